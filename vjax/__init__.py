@@ -1,0 +1,28 @@
+"""vjax: differentiable viscoelastic contact mechanics in circular geometries, in JAX.
+
+Precision: vjax never changes JAX's global configuration on import. Its results are meant
+to be float64, so enable it **before any JAX computation**::
+
+    import jax
+    jax.config.update("jax_enable_x64", True)   # or: export JAX_ENABLE_X64=1
+    import vjax
+
+Without it everything runs in float32 (no NaN, lower accuracy); vjax warns once on import.
+The command-line tools, experiments and tests enable float64 themselves.
+"""
+import warnings as _warnings
+
+import jax as _jax
+
+from .material import Arrhenius, CreepSpectrum, Material, WLF
+from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
+from . import green
+
+__all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
+           "element_symbol", "grid", "ring_operator", "green"]
+
+if not _jax.config.read("jax_enable_x64"):
+    _warnings.warn(
+        "vjax: JAX runs in float32; results are meant to be float64. Call "
+        "jax.config.update('jax_enable_x64', True) (or set JAX_ENABLE_X64=1) before any JAX "
+        "computation.", stacklevel=2)

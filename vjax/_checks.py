@@ -1,0 +1,59 @@
+"""Argument checks shared by the public constructors.
+
+Checks run only on concrete values: inside ``jit``/``vmap``/``grad`` the arguments are
+tracers and are passed through unchecked (the solvers report non-convergence instead).
+"""
+from __future__ import annotations
+
+import numpy as np
+import jax
+
+
+def is_concrete(x) -> bool:
+    """True when ``x`` (and every leaf in it) has a value we can inspect now."""
+    return not any(isinstance(leaf, jax.core.Tracer) for leaf in jax.tree_util.tree_leaves(x))
+
+
+def values(name: str, x):
+    """``x`` as a numpy array, or ``None`` when it is traced. Refuses NaN and inf."""
+    if isinstance(x, str):
+        raise ValueError(f"{name} must be a number, got the string {x!r}")
+    # Tracers, abstract values and PyTree placeholders (None, object()) seen while JAX
+    # rebuilds a PyTree are not inspectable: they pass unchecked.
+    if not isinstance(x, (int, float, complex, np.ndarray, np.generic, list, tuple, jax.Array)):
+        return None
+    if not is_concrete(x):
+        return None
+    a = np.asarray(x)
+    if a.dtype == object or not np.issubdtype(a.dtype, np.number):
+        raise ValueError(f"{name} must be numeric, got {x!r}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {x!r}")
+    return a
+
+
+def positive(name: str, x) -> None:
+    a = values(name, x)
+    if a is not None and not np.all(a > 0):
+        raise ValueError(f"{name} must be > 0, got {x!r}")
+
+
+def nonnegative(name: str, x) -> None:
+    a = values(name, x)
+    if a is not None and not np.all(a >= 0):
+        raise ValueError(f"{name} must be >= 0, got {x!r}")
+
+
+def poisson(name: str, nu) -> None:
+    a = values(name, nu)
+    if a is not None and not np.all((a > -1.0) & (a <= 0.5)):
+        raise ValueError(f"{name} (Poisson's ratio) must lie in (-1, 0.5], got {nu!r}")
+
+
+def finite(name: str, x) -> None:
+    values(name, x)
+
+
+def one_of(name: str, x, options) -> None:
+    if x not in options:
+        raise ValueError(f"{name} must be one of {sorted(map(str, options))}, got {x!r}")

@@ -1,0 +1,277 @@
+"""Linear viscoelastic material laws: generalized Maxwell (Prony) series.
+
+Convention (thesis Section 1.2): harmonic fields go as ``exp(i omega t)``, so the complex
+modulus of a generalized Maxwell solid (Eq. 1.43-1.44) is
+
+    E*(omega) = E0 + sum_k E_k * i omega tau_k / (1 + i omega tau_k)
+
+with ``E0`` the rubbery (relaxed, omega -> 0) modulus, ``E_k`` the arm moduli and ``tau_k``
+the **relaxation** times. The glassy modulus is ``Einf = E0 + sum_k E_k``. The standard
+linear solid (Eq. 1.35, 1.42) is the one-arm case; an elastic material has no arms and
+skips every memory term downstream.
+
+The compliance 1/E* has the retardation (creep) form of Eq. 2.3-2.4,
+
+    J*(omega) = J0 + sum_k C_k / (1 + i omega lambda_k),    J0 = 1/Einf,
+
+whose retardation times ``lambda_k`` are the zeros ``s_k = -1/lambda_k`` of the Laplace
+modulus E(s) = E0 + sum E_k s tau_k/(1 + s tau_k). They interlace the poles ``-1/tau_k``
+(DESIGN.md section 3), so :meth:`Material.creep_spectrum` brackets each one between
+consecutive poles and bisects in log|s|; polynomial root finding fails for spectra that
+span many decades.
+
+Time-temperature superposition (Section 1.2): E*(omega, T) = E*(a_T(T) omega, T_ref). With
+a Prony series this is a rescaling of the relaxation times, tau_k -> a_T tau_k, so
+:meth:`Material.at_temperature` returns another :class:`Material` that every scene accepts.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _checks
+
+GAS_CONSTANT = 8.314462618  # J/(mol K)
+KELVIN = 273.15
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class CreepSpectrum:
+    """Retardation form of the compliance, Eq. 2.3-2.4: J(t) = J0 + sum C_k (1 - exp(-t/lambda_k)).
+
+    Attributes: ``J0`` = 1/Einf (1/Pa), ``C`` (1/Pa, all > 0), ``retardation_times`` (s).
+    """
+
+    J0: jax.Array
+    C: jax.Array
+    retardation_times: jax.Array
+
+    def compliance(self, omega):
+        """J*(omega) = J0 + sum_k C_k / (1 + i omega lambda_k) (1/Pa), omega in rad/s."""
+        w = jnp.asarray(omega)[..., None]
+        return self.J0 + jnp.sum(self.C / (1.0 + 1j * w * self.retardation_times), axis=-1)
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Material:
+    """A generalized Maxwell solid in plane strain. A PyTree: jit, vmap and grad see the arrays.
+
+    Attributes:
+      E0: rubbery (relaxed) Young's modulus (Pa).
+      moduli: Maxwell arm moduli E_k (Pa), shape (K,); K = 0 for an elastic material.
+      times: relaxation times tau_k (s), shape (K,).
+      nu: Poisson's ratio (plane strain Kolosov constant kappa = 3 - 4 nu).
+
+    Build it with :meth:`elastic`, :meth:`sls` or :meth:`prony`; they check the values.
+
+    >>> m = Material.sls(E0=1e6, Einf=1e7, tau=0.01, nu=0.5)
+    >>> float(m.Einf)
+    10000000.0
+    >>> round(float(m.modulus(0.0).real))
+    1000000
+    """
+
+    E0: jax.Array
+    moduli: jax.Array
+    times: jax.Array
+    nu: jax.Array
+
+    # ---- constructors -------------------------------------------------------------
+    @classmethod
+    def elastic(cls, E, nu) -> "Material":
+        """Elastic solid, Young's modulus ``E`` (Pa)."""
+        _checks.positive("E", E)
+        _checks.poisson("nu", nu)
+        empty = jnp.zeros((0,), dtype=jnp.result_type(E, float))
+        return cls(jnp.asarray(E, dtype=empty.dtype), empty, empty, jnp.asarray(nu, dtype=empty.dtype))
+
+    @classmethod
+    def sls(cls, E0, Einf, tau, nu) -> "Material":
+        """Standard linear solid (Eq. 1.35, 1.42): rubbery ``E0``, glassy ``Einf`` > E0 (Pa),
+        **relaxation** time ``tau`` (s). Its retardation time is (Einf/E0) tau (Eq. 1.41)."""
+        _checks.positive("E0", E0)
+        _checks.positive("tau", tau)
+        e0, einf = _checks.values("E0", E0), _checks.values("Einf", Einf)
+        if e0 is not None and einf is not None and not np.all(einf > e0):
+            raise ValueError(f"Einf must be > E0 for a standard linear solid, got Einf={Einf!r}, E0={E0!r}")
+        return cls.prony(E0, jnp.atleast_1d(jnp.asarray(Einf) - jnp.asarray(E0)), jnp.atleast_1d(tau), nu)
+
+    @classmethod
+    def prony(cls, E0, moduli, times, nu) -> "Material":
+        """Generalized Maxwell solid (Eq. 1.43-1.44): E(t) = E0 + sum_k E_k exp(-t/tau_k).
+
+        ``moduli`` (Pa) and ``times`` (s) are 1-D of equal length, all > 0, times distinct.
+        """
+        _checks.positive("E0", E0)
+        _checks.positive("moduli", moduli)
+        _checks.positive("times", times)
+        _checks.poisson("nu", nu)
+        moduli, times = jnp.atleast_1d(jnp.asarray(moduli)), jnp.atleast_1d(jnp.asarray(times))
+        if moduli.ndim != 1 or moduli.shape != times.shape:
+            raise ValueError(
+                f"moduli and times must be 1-D of equal length, got shapes {moduli.shape} and {times.shape}")
+        t = _checks.values("times", times)
+        if t is not None and len(np.unique(t)) != len(t):
+            raise ValueError("times must be distinct (merge Prony terms with equal relaxation times)")
+        dtype = jnp.result_type(E0, moduli, times, float)
+        return cls(jnp.asarray(E0, dtype), moduli.astype(dtype), times.astype(dtype), jnp.asarray(nu, dtype))
+
+    # ---- properties ---------------------------------------------------------------
+    @property
+    def is_elastic(self) -> bool:
+        """Static: True when there are no Maxwell arms (no memory terms anywhere)."""
+        return self.times.shape[-1] == 0
+
+    @property
+    def Einf(self):
+        """Glassy (instantaneous) modulus E0 + sum E_k (Pa)."""
+        return self.E0 + jnp.sum(self.moduli, axis=-1)
+
+    @property
+    def kappa(self):
+        """Kolosov constant, plane strain: 3 - 4 nu."""
+        return 3.0 - 4.0 * self.nu
+
+    # ---- frequency domain ---------------------------------------------------------
+    def modulus(self, omega):
+        """Complex modulus E*(omega) (Pa); ``omega`` in rad/s, any shape. E*(-w) = conj E*(w)."""
+        w = jnp.asarray(omega)[..., None]
+        iwt = 1j * w * self.times
+        return self.E0 + jnp.sum(self.moduli * iwt / (1.0 + iwt), axis=-1)
+
+    def compliance(self, omega):
+        """Complex compliance J*(omega) = 1/E*(omega) (1/Pa)."""
+        return 1.0 / self.modulus(omega)
+
+    def storage(self, omega):
+        """Storage modulus E'(omega) (Pa)."""
+        return self.modulus(omega).real
+
+    def loss(self, omega):
+        """Loss modulus E''(omega) (Pa); positive for omega > 0."""
+        return self.modulus(omega).imag
+
+    def tan_delta(self, omega):
+        """Loss factor E''/E'."""
+        e = self.modulus(omega)
+        return e.imag / e.real
+
+    def relaxation(self, t):
+        """Relaxation modulus E(t) = E0 + sum E_k exp(-t/tau_k) (Pa), t in s."""
+        t = jnp.asarray(t)[..., None]
+        return self.E0 + jnp.sum(self.moduli * jnp.exp(-t / self.times), axis=-1)
+
+    # ---- creep form ---------------------------------------------------------------
+    def creep_spectrum(self, iterations: int = 120) -> CreepSpectrum:
+        """Retardation spectrum (J0, C_k, lambda_k) of Eq. 2.3-2.4, differentiable.
+
+        Each zero s_k = -1/lambda_k of E(s) lies between consecutive poles -1/tau_k (and the
+        last between -1/tau_max and 0), where E(s) increases monotonically from -inf to
+        +inf. Bisection in x = log(-s) finds it for spectra spanning any number of decades;
+        one final Newton step carries the implicit-function derivative ds/dp = -E_p/E_s
+        (the bisection itself has zero derivative). C_k = lambda_k / E'(s_k) > 0.
+        """
+        order = jnp.argsort(self.times)
+        tau, Ek = self.times[order], self.moduli[order]
+
+        def laplace_modulus(s):
+            # E(s) for s on the negative axis, one s per interval (broadcast against tau).
+            st = s[:, None] * tau
+            return self.E0 + jnp.sum(Ek * st / (1.0 + st), axis=-1)
+
+        def slope(s):
+            return jnp.sum(Ek * tau / (1.0 + s[:, None] * tau) ** 2, axis=-1)
+
+        # Interval k lies between -1/tau_k and -1/tau_{k+1} (or 0 for the last one): in
+        # x = log(-s), between log(1/tau_{k+1}) (E -> +inf side, or -inf log for s -> 0)
+        # and log(1/tau_k) (E -> -inf side).
+        tau_s = jax.lax.stop_gradient(tau)
+        x_hi = -jnp.log(tau_s)                                   # pole: E(s) -> -inf just right of it
+        x_lo = jnp.concatenate([-jnp.log(tau_s[1:]), (-jnp.log(tau_s[-1:]) - 60.0)])
+        mat_s = jax.lax.stop_gradient(self)
+
+        def bisect(_, bounds):
+            lo, hi = bounds
+            mid = 0.5 * (lo + hi)
+            s = -jnp.exp(mid)
+            st = s[:, None] * tau_s
+            e = mat_s.E0 + jnp.sum(mat_s.moduli[order] * st / (1.0 + st), axis=-1)
+            # E increases with s, i.e. decreases with x: E > 0 means the root is at larger x.
+            return jnp.where(e > 0, mid, lo), jnp.where(e > 0, hi, mid)
+
+        lo, hi = jax.lax.fori_loop(0, iterations, bisect, (x_lo, x_hi))
+        s0 = jax.lax.stop_gradient(-jnp.exp(0.5 * (lo + hi)))
+        s = s0 - laplace_modulus(s0) / slope(s0)  # exact first derivative, value unchanged to O(err^2)
+        lam = -1.0 / s
+        C = lam / slope(s)
+        return CreepSpectrum(1.0 / self.Einf, C, lam)
+
+    # ---- temperature --------------------------------------------------------------
+    def at_temperature(self, shift, T) -> "Material":
+        """The material at temperature ``T`` (C) given a shift law referred to its T_ref:
+        E*(omega, T) = E*(a_T(T) omega, T_ref), i.e. tau_k -> a_T(T) tau_k."""
+        aT = 10.0 ** shift.log10_aT(T)
+        return dataclasses.replace(self, times=self.times * aT)
+
+
+# ---- time-temperature shift laws ----------------------------------------------------
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class WLF:
+    """Williams-Landel-Ferry shift: log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref); T in C.
+
+    Valid only above the asymptote T_ref - C2; ``log10_aT`` refuses temperatures at or below
+    it when they are concrete.
+    """
+
+    C1: jax.Array
+    C2: jax.Array
+    T_ref: jax.Array
+
+    def __init__(self, C1, C2, T_ref):
+        _checks.positive("C1", C1)
+        _checks.positive("C2", C2)
+        _checks.finite("T_ref", T_ref)
+        object.__setattr__(self, "C1", C1)
+        object.__setattr__(self, "C2", C2)
+        object.__setattr__(self, "T_ref", T_ref)
+
+    def log10_aT(self, T):
+        dT = jnp.asarray(T) - self.T_ref
+        t, c2 = _checks.values("T", T), _checks.values("C2", self.C2)
+        if t is not None and c2 is not None and _checks.is_concrete(self.T_ref):
+            if np.any(t - np.asarray(self.T_ref) <= -c2):
+                raise ValueError(
+                    f"T={T!r} C is at or below the WLF asymptote T_ref - C2 = {float(np.asarray(self.T_ref) - c2):.4g} C")
+        return -self.C1 * dT / (self.C2 + dT)
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Arrhenius:
+    """Arrhenius shift: log10 a_T = Ea / (R ln 10) (1/T - 1/T_ref), Ea in J/mol, T in C."""
+
+    Ea: jax.Array
+    T_ref: jax.Array
+
+    def __init__(self, Ea, T_ref):
+        _checks.positive("Ea", Ea)
+        _checks.finite("T_ref", T_ref)
+        t = _checks.values("T_ref", T_ref)
+        if t is not None and np.any(t <= -KELVIN):
+            raise ValueError(f"T_ref must be above absolute zero, got {T_ref!r} C")
+        object.__setattr__(self, "Ea", Ea)
+        object.__setattr__(self, "T_ref", T_ref)
+
+    def log10_aT(self, T):
+        t = _checks.values("T", T)
+        if t is not None and np.any(t <= -KELVIN):
+            raise ValueError(f"T must be above absolute zero (-273.15 C), got {T!r}")
+        inv = 1.0 / (jnp.asarray(T) + KELVIN) - 1.0 / (self.T_ref + KELVIN)
+        return self.Ea / (GAS_CONSTANT * math.log(10.0)) * inv

@@ -1,0 +1,148 @@
+"""Steady-state viscoelastic ring operator sigma -> u, applied by FFT (DESIGN.md section 3).
+
+A ring of radius R is cut into N equal elements (centres theta_i = 2 pi i / N, half-width
+alpha = pi / N, constant pressure per element). Eq. 2.18 couples them through the
+circulant matrix L(theta_i - theta_k), so it is diagonal in Fourier space. For a pressure
+pattern rotating rigidly at angular velocity ``omega`` (rad/s) relative to the body, mode
+n is seen by a material point as a harmonic at frequency -n*omega, so
+
+    u^_n = R * L^_n * Jeff_n(omega) * sigma^_n.
+
+**Sign convention of omega.** ``omega > 0`` means the pressure pattern moves towards
+increasing theta (counter-clockwise). Its leading edge is then the one at larger theta,
+and the material, still relaxing behind the load, shows the larger displacement at the
+trailing edge (smaller theta).
+
+Memory models (``memory=``):
+
+- ``"periodic"`` (default): the exact periodic steady state, Jeff_n = 1/E*(-n omega).
+  Mode 0 (the mean load) is static and always sees the rubbery compliance 1/E0.
+- ``"thesis"``: Eq. 2.14/2.16, the load history truncated to one revolution:
+  Jeff_n = J0 + sum_k C_k (1 - exp(-2 pi/(|omega| lambda_k))) / (1 - i n omega lambda_k),
+  with (J0, C_k, lambda_k) the creep spectrum.
+- a number m > 0 of revolutions since the rolling started: the same with 2 pi m; m = 1 is
+  the thesis, m -> inf the periodic steady state (t_run = 2 pi m / omega).
+
+The two differ where omega*lambda_k is not small (DESIGN.md: a factor 2 in pin friction
+torque at omega*tau = 1). The periodic model is what a machine sees after running in;
+the thesis model reproduces the thesis's figures. Elastic materials skip all of this.
+
+The Nyquist mode (N even) uses Re Jeff, as the real FFT keeps only its real part; this
+keeps the operator real and equal to its dense matrix.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _checks, green
+from .material import Material
+
+
+def memory_revolutions(memory) -> float:
+    """Number of revolutions of load history: inf for "periodic", 1 for "thesis"."""
+    if isinstance(memory, str):
+        _checks.one_of("memory", memory, ("periodic", "thesis"))
+        return np.inf if memory == "periodic" else 1.0
+    try:
+        m = float(memory)
+    except (TypeError, ValueError):
+        raise ValueError(f"memory must be 'periodic', 'thesis' or a number of revolutions > 0, got {memory!r}")
+    if not m > 0:
+        raise ValueError(f"memory (number of revolutions) must be > 0, got {memory!r}")
+    return m
+
+
+def effective_compliance(material: Material, modes, omega, memory="periodic"):
+    """Jeff_n (1/Pa) of Fourier modes ``modes`` (signed integers) for a pattern at ``omega`` (rad/s)."""
+    modes = jnp.asarray(modes)
+    if material.is_elastic:  # no memory terms at all
+        return jnp.broadcast_to(1.0 / material.E0, modes.shape)
+    m = memory_revolutions(memory)
+    if np.isinf(m):
+        return material.compliance(-modes * omega)
+    spec = material.creep_spectrum()
+    speed = jnp.abs(omega)
+    moving = speed > 0
+    # exp(-2 pi m / (|omega| lambda)) -> 0 as omega -> 0; double where keeps grads finite.
+    decay = jnp.where(moving, jnp.exp(-2.0 * jnp.pi * m / (jnp.where(moving, speed, 1.0)
+                                                         * spec.retardation_times)), 0.0)
+    w = (modes * omega)[..., None]
+    terms = spec.C * (1.0 - decay) / (1.0 - 1j * w * spec.retardation_times)
+    return spec.J0 + jnp.sum(terms, axis=-1)
+
+
+def grid(n: int):
+    """Element centres theta_i = 2 pi i / n (rad) and half-width alpha = pi / n."""
+    return 2.0 * jnp.pi * jnp.arange(n) / n, jnp.pi / n
+
+
+def element_symbol(kind: str, n: int, R, nu, ref_length=1.0):
+    """Real FFT of the first column L(theta_i) of the circulant element matrix (modes 0..n/2).
+
+    The kernels are even, so the symbol is real. Multiply by R * Jeff_n to get the operator.
+    """
+    theta, alpha = grid(n)
+    return jnp.fft.rfft(green.element_kernel(kind, theta, alpha, R, nu, ref_length)).real
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class RingOperator:
+    """u = L sigma on a ring of ``n`` elements; u, sigma positive into the body (m, Pa).
+
+    ``symbol[k]`` (m/Pa) multiplies mode k = 0..n/2 of the real FFT. Calling the operator
+    costs one rfft and one irfft: O(n log n).
+    """
+
+    symbol: jax.Array
+    n: int = dataclasses.field(metadata=dict(static=True))
+
+    def __call__(self, sigma):
+        return jnp.fft.irfft(self.symbol * jnp.fft.rfft(sigma, axis=-1), self.n, axis=-1)
+
+    @property
+    def kernel(self):
+        """First column c: the dense matrix is M[i, j] = c[(i - j) mod n]."""
+        return jnp.fft.irfft(self.symbol, self.n)
+
+    def dense(self):
+        """The dense n x n matrix (for small n and for tests)."""
+        c = self.kernel
+        idx = (jnp.arange(self.n)[:, None] - jnp.arange(self.n)[None, :]) % self.n
+        return c[idx]
+
+
+def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="periodic",
+                  ref_length=1.0) -> RingOperator:
+    """Steady-state operator of a ring of radius ``R`` (m) on ``n`` elements.
+
+    Args:
+      kind: Green's function, "hole", "cylinder", "diametral" or "half_plane" (see
+        :mod:`vjax.green`).
+      material: the body's :class:`~vjax.Material`.
+      R: ring radius (m).
+      n: number of elements (static).
+      omega: angular velocity of the pressure pattern relative to the body (rad/s).
+      memory: "periodic", "thesis" or a number of revolutions (see module docstring).
+      ref_length: reference length of the log terms (m), default 1 m as the thesis.
+
+    >>> import jax.numpy as jnp
+    >>> op = ring_operator("hole", Material.elastic(1e6, 0.3), R=0.05, n=64)
+    >>> u = op(jnp.full(64, 1e3))   # uniform pressure: Lame, u = p R (1 + nu) / E
+    >>> round(float(u[0]) / (1e3 * 0.05 * 1.3 / 1e6), 6)
+    1.0
+    """
+    green._check_kind(kind)
+    if not isinstance(n, (int, np.integer)) or n < 4:
+        raise ValueError(f"n (number of elements) must be an integer >= 4, got {n!r}")
+    _checks.positive("R", R)
+    _checks.positive("ref_length", ref_length)
+    _checks.finite("omega", omega)
+    memory_revolutions(memory)
+    modes = jnp.arange(n // 2 + 1)
+    jeff = effective_compliance(material, modes, omega, memory)
+    return RingOperator(R * element_symbol(kind, n, R, material.nu, ref_length) * jeff, int(n))
