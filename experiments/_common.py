@@ -1,0 +1,163 @@
+"""Small helpers shared by the experiment scripts (kept small and stable: others reuse them).
+
+- :func:`setup` / :func:`enable_x64`: float64 JAX and the non-interactive Agg backend.
+- :func:`atomic_write_text`, :func:`save_figure`, :func:`write_csv`: write to a temporary
+  file in the destination directory, then ``os.replace`` it, so a reader (or a crash)
+  never sees a half-written file.
+- :func:`time_fn`: first-call time (tracing + compilation + one run) separated from the
+  median of warm calls, each synchronised with ``block_until_ready``.
+- :func:`format_table` / :func:`print_table`: a plain fixed-width text table.
+
+Call :func:`enable_x64` (or :func:`setup`) **before** importing vjax or running any JAX
+computation, e.g. at the top of a script::
+
+    from experiments import _common
+    _common.enable_x64()
+    import vjax  # noqa: E402
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+__all__ = ["enable_x64", "setup", "atomic_write_text", "atomic_write_bytes", "save_figure",
+           "write_csv", "time_fn", "format_table", "print_table"]
+
+
+def enable_x64() -> None:
+    """Turn on float64 in JAX and select matplotlib's Agg backend (idempotent)."""
+    import jax
+    jax.config.update("jax_enable_x64", True)
+    import matplotlib
+    matplotlib.use("Agg")
+
+
+def setup(out_dir="experiments/out") -> Path:
+    """Enable float64 and Agg (:func:`enable_x64`), create ``out_dir`` and return it as a Path."""
+    enable_x64()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def atomic_write_bytes(path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically (temp file in the same directory + os.replace)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+        os.chmod(tmp, 0o644)  # mkstemp makes it 0600; give the usual mode of a new file
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def atomic_write_text(path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically."""
+    return atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def save_figure(fig, path, dpi: int = 150, close: bool = True) -> Path:
+    """Save a matplotlib figure atomically (format from the suffix of ``path``); close it."""
+    path = Path(path)
+    buf = io.BytesIO()
+    fig.savefig(buf, format=path.suffix.lstrip(".") or "png", dpi=dpi, bbox_inches="tight")
+    if close:
+        import matplotlib.pyplot as plt
+        plt.close(fig)
+    return atomic_write_bytes(path, buf.getvalue())
+
+
+def _cell(x):
+    """CSV cell: floats in full precision ('%.17g'), everything else as str."""
+    if isinstance(x, float):
+        return format(x, ".17g")
+    if hasattr(x, "item") and getattr(x, "ndim", None) == 0:  # numpy / jax scalar
+        return _cell(x.item())
+    return x
+
+
+def write_csv(path, header, rows, comments=()) -> Path:
+    """Write a CSV atomically: optional ``# comment`` lines, one header row, then ``rows``.
+
+    ``rows`` is an iterable of sequences; floats are written with 17 significant digits.
+    Comment lines (units, parameters, provenance) start with '#' so that
+    ``numpy.genfromtxt(..., comments='#')`` and ``pandas.read_csv(comment='#')`` skip them.
+    """
+    buf = io.StringIO()
+    for c in comments:
+        buf.write(f"# {c}\n")
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(list(header))
+    for r in rows:
+        w.writerow([_cell(x) for x in r])
+    return atomic_write_text(path, buf.getvalue())
+
+
+def _block(x):
+    import jax
+    return jax.block_until_ready(x)
+
+
+def time_fn(fn, *args, repeats: int = 50, number: int = 1):
+    """Time ``fn(*args)``: returns ``(first_call_s, median_s)``.
+
+    ``first_call_s`` is the wall time of the first call (for a jitted function: tracing +
+    XLA compilation + one run); it is a compile-time measurement only if ``fn`` has not
+    been called with these shapes before. ``median_s`` is the median over ``repeats``
+    samples of warm calls, each sample timing ``number`` back-to-back calls (divided by
+    ``number``) and ending in ``block_until_ready``. At microsecond scale the median
+    includes Python dispatch overhead (a few microseconds), as a user calling it would see.
+    """
+    if repeats < 1 or number < 1:
+        raise ValueError(f"repeats and number must be >= 1, got {repeats}, {number}")
+    t0 = time.perf_counter()
+    _block(fn(*args))
+    first = time.perf_counter() - t0
+    samples = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(number):
+            out = fn(*args)
+        _block(out)
+        samples.append((time.perf_counter() - t0) / number)
+    return first, statistics.median(samples)
+
+
+def _fmt(x):
+    if isinstance(x, float):
+        if math.isnan(x):
+            return "-"
+        return f"{x:.4g}"
+    return str(x)
+
+
+def format_table(header, rows) -> str:
+    """Fixed-width text table (floats as 4 significant digits, NaN as '-')."""
+    cells = [[str(h) for h in header]] + [[_fmt(x) for x in r] for r in rows]
+    widths = [max(len(r[i]) for r in cells) for i in range(len(header))]
+    lines = ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def print_table(header, rows, title=None) -> str:
+    """Print :func:`format_table` (with an optional title line) and return the text."""
+    text = format_table(header, rows)
+    if title:
+        text = f"{title}\n{text}"
+    print(text)
+    return text
