@@ -1,0 +1,140 @@
+"""Material JSON files: save and load a fitted Prony material with its shift law.
+
+Schema (temperatures in C, moduli in Pa, times in s)::
+
+    {"kind": "prony", "E0": 1.2e6, "moduli": [...], "times": [...], "nu": 0.5,
+     "modulus": "E" | "G",
+     "shift": {"law": "WLF", "C1": 8.86, "C2": 101.6, "T_ref": 25.0}
+            | {"law": "Arrhenius", "Ea": 2.0e5, "T_ref": 25.0}
+            | {"law": "table", "T": [...], "log10_aT": [...], "T_ref": 25.0},
+     "uncertainty": {...}, "fit": {...}}          # optional, informative only
+
+Writes are atomic: the JSON goes to a temporary file in the target directory, is flushed
+and fsync'ed, then ``os.replace``'d over the target, so a reader never sees half a file.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+
+import numpy as np
+
+from vjax.material import Arrhenius, Material, WLF
+
+from .master import ShiftTable
+
+__all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict", "atomic_write"]
+
+
+def atomic_write(path, data: bytes | str) -> None:
+    """Write ``data`` to ``path`` via a temporary file + ``os.replace`` (never half-written)."""
+    path = os.fspath(path)
+    d = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=d)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _shift_to_dict(shift) -> dict:
+    if isinstance(shift, WLF):
+        return {"law": "WLF", "C1": float(shift.C1), "C2": float(shift.C2), "T_ref": float(shift.T_ref)}
+    if isinstance(shift, Arrhenius):
+        return {"law": "Arrhenius", "Ea": float(shift.Ea), "T_ref": float(shift.T_ref)}
+    if isinstance(shift, ShiftTable):
+        return {"law": "table", "T": [float(t) for t in np.asarray(shift.T)],
+                "log10_aT": [float(v) for v in np.asarray(shift.values)], "T_ref": float(shift.T_ref)}
+    raise TypeError(f"cannot save shift law of type {type(shift).__name__}")
+
+
+def _clean(o):
+    """JSON-safe copy: numpy scalars/arrays to Python, non-finite floats to None."""
+    if isinstance(o, dict):
+        return {str(k): _clean(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_clean(v) for v in o]
+    if isinstance(o, np.ndarray) or hasattr(o, "tolist") and not isinstance(o, (str, bytes)):
+        return _clean(np.asarray(o).tolist())
+    if isinstance(o, float):
+        return o if math.isfinite(o) else None
+    return o
+
+
+def material_to_dict(material: Material, shift, modulus: str = "E", uncertainty=None, fit=None) -> dict:
+    """The JSON object of the module docstring."""
+    if modulus not in ("E", "G"):
+        raise ValueError(f"modulus must be 'E' or 'G', got {modulus!r}")
+    d = {"kind": "prony", "E0": float(material.E0), "moduli": [float(v) for v in np.asarray(material.moduli)],
+         "times": [float(v) for v in np.asarray(material.times)], "nu": float(material.nu),
+         "modulus": modulus, "shift": _shift_to_dict(shift)}
+    if uncertainty:
+        d["uncertainty"] = _clean(uncertainty)
+    if fit:
+        d["fit"] = _clean(fit)
+    return d
+
+
+def save_material(path, material: Material, shift, modulus: str = "E", uncertainty=None, fit=None) -> None:
+    """Save ``material`` (a Prony :class:`vjax.Material`, moduli in Pa) and its shift law
+    to ``path`` as JSON, atomically. ``modulus`` says whether the moduli are tensile (E) or
+    shear (G)."""
+    atomic_write(path, json.dumps(material_to_dict(material, shift, modulus, uncertainty, fit), indent=2) + "\n")
+
+
+def _need(d, key, where):
+    if key not in d:
+        raise ValueError(f"{where}: missing key {key!r}")
+    return d[key]
+
+
+def material_from_dict(d: dict, where: str = "material"):
+    """Inverse of :func:`material_to_dict`: returns ``(Material, shift, modulus)``."""
+    if not isinstance(d, dict):
+        raise ValueError(f"{where}: expected a JSON object")
+    if _need(d, "kind", where) != "prony":
+        raise ValueError(f"{where}: kind must be 'prony', got {d['kind']!r}")
+    modulus = d.get("modulus", "E")
+    if modulus not in ("E", "G"):
+        raise ValueError(f"{where}: modulus must be 'E' or 'G', got {modulus!r}")
+    try:
+        moduli = np.asarray(_need(d, "moduli", where), float)
+        times = np.asarray(_need(d, "times", where), float)
+        mat = Material.prony(float(_need(d, "E0", where)), moduli, times, float(_need(d, "nu", where)))
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{where}: {e}") from None
+    s = _need(d, "shift", where)
+    law = _need(s, "law", where + " shift")
+    T_ref = float(_need(s, "T_ref", where + " shift"))
+    try:
+        if law == "WLF":
+            shift = WLF(float(_need(s, "C1", where)), float(_need(s, "C2", where)), T_ref)
+        elif law == "Arrhenius":
+            shift = Arrhenius(float(_need(s, "Ea", where)), T_ref)
+        elif law == "table":
+            shift = ShiftTable.make(_need(s, "T", where), _need(s, "log10_aT", where), T_ref)
+        else:
+            raise ValueError(f"unknown shift law {law!r} (WLF, Arrhenius or table)")
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{where} shift: {e}") from None
+    return mat, shift, modulus
+
+
+def load_material(path):
+    """Load a material JSON file; returns ``(Material, shift, modulus)`` with modulus 'E' or
+    'G'. Raises ValueError naming the file for malformed content."""
+    path = os.fspath(path)
+    with open(path, encoding="utf-8") as fh:
+        try:
+            d = json.load(fh)
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{path}, line {e.lineno}: invalid JSON ({e.msg})") from None
+    return material_from_dict(d, where=path)

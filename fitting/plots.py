@@ -1,0 +1,116 @@
+"""Plots of a calibration: master curve, shift factors, residuals, relaxation spectrum.
+
+Each function draws on a new matplotlib figure (Agg backend, no display needed) and, when
+``path`` is given, saves it atomically (temporary file + os.replace) and closes it.
+"""
+from __future__ import annotations
+
+import os
+import tempfile
+
+import matplotlib
+
+matplotlib.use("Agg", force=False)
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "save_all"]
+
+
+def _save(fig, path):
+    if path is None:
+        return fig
+    path = os.fspath(path)
+    d = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".png", dir=d)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=110, bbox_inches="tight")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        plt.close(fig)
+    return path
+
+
+def _reduced(table, shift):
+    return table.omega * 10.0 ** np.asarray(shift.log10_aT(table.T))
+
+
+def master_curve(table, material, shift, path=None):
+    """Storage and loss (Pa) versus reduced angular frequency a_T omega (rad/s) at T_ref:
+    data coloured by temperature, fitted Prony series as lines."""
+    wr = _reduced(table, shift)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    sc = None
+    for a, y, lab in ((ax[0], table.storage, "storage"), (ax[1], table.loss, "loss")):
+        sc = a.scatter(wr, y, c=table.T, s=9, cmap="coolwarm")
+        a.set_xscale("log")
+        a.set_yscale("log")
+        a.set_xlabel(r"reduced angular frequency $a_T\omega$ (rad/s)")
+        a.set_ylabel(f"{lab} modulus {table.kind}{chr(39) if lab == 'storage' else 2 * chr(39)} (Pa)")
+    w = np.logspace(np.log10(wr.min()) - 0.5, np.log10(wr.max()) + 0.5, 400)
+    E = np.asarray(material.modulus(w))
+    ax[0].plot(w, E.real, "k-", lw=1.2, label=f"Prony, {material.moduli.shape[0]} terms")
+    ax[1].plot(w, E.imag, "k-", lw=1.2)
+    ax[0].legend(loc="lower right")
+    fig.colorbar(sc, ax=ax, label="T (C)")
+    fig.suptitle(f"master curve at T_ref = {float(shift.T_ref):g} C")
+    return _save(fig, path)
+
+
+def shift_factors(data_shift, shift, path=None):
+    """log10 a_T per sweep (``data_shift``, a ShiftTable estimated from the data or refined)
+    with the fitted shift law as a line."""
+    fig, ax = plt.subplots(figsize=(5.5, 4.2))
+    T = np.asarray(data_shift.T)
+    ax.plot(T, np.asarray(data_shift.values), "o", label="per sweep")
+    Tl = np.linspace(T.min(), T.max(), 300)
+    ax.plot(Tl, np.asarray(shift.log10_aT(Tl)), "-", label=type(shift).__name__)
+    ax.axvline(float(shift.T_ref), color="0.7", lw=0.8)
+    ax.set_xlabel("T (C)")
+    ax.set_ylabel(r"$\log_{10} a_T$")
+    ax.legend()
+    return _save(fig, path)
+
+
+def residuals(table, material, shift, path=None):
+    """log10(model/measured) of storage and loss versus reduced frequency, by temperature."""
+    wr = _reduced(table, shift)
+    E = np.asarray(material.modulus(wr))
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    ax.scatter(wr, np.log10(E.real / table.storage), c=table.T, s=9, cmap="coolwarm", marker="o", label="storage")
+    ax.scatter(wr, np.log10(E.imag / table.loss), c=table.T, s=12, cmap="coolwarm", marker="x", label="loss")
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xscale("log")
+    ax.set_xlabel(r"reduced angular frequency $a_T\omega$ (rad/s)")
+    ax.set_ylabel(r"$\log_{10}$(model / measured)")
+    ax.legend()
+    return _save(fig, path)
+
+
+def spectrum(material, path=None):
+    """Relaxation spectrum: E_k (Pa) at tau_k (s), and the relaxation modulus E(t)."""
+    tau, Ek = np.asarray(material.times), np.asarray(material.moduli)
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    ax.vlines(tau, 1e-300, Ek, color="C0")
+    ax.plot(tau, Ek, "o", color="C0", label=r"$E_k$ at $\tau_k$")
+    t = np.logspace(np.log10(tau.min()) - 1, np.log10(tau.max()) + 1, 300)
+    ax.plot(t, np.asarray(material.relaxation(t)), "k-", lw=1, label="E(t)")
+    ax.axhline(float(material.E0), color="0.6", ls="--", lw=0.8, label=f"E0 = {float(material.E0):.3g} Pa")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(max(Ek.min(), float(material.E0) if float(material.E0) > 0 else Ek.min()) / 10, float(material.Einf) * 2)
+    ax.set_xlabel("relaxation time (s)")
+    ax.set_ylabel("modulus (Pa)")
+    ax.legend()
+    return _save(fig, path)
+
+
+def save_all(out_dir, stem, table, material, shift, data_shift) -> list:
+    """Write the four plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
+    ``_spectrum.png`` in ``out_dir``; returns their paths."""
+    p = lambda s: os.path.join(out_dir, f"{stem}_{s}.png")
+    return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift")),
+            residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum"))]
