@@ -17,6 +17,7 @@ import jax as _jax
 from .material import Arrhenius, CreepSpectrum, Material, WLF
 from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
 from . import green
+from .journal import JournalSolution, journal_bearing
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "green"]
