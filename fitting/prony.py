@@ -268,7 +268,12 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     sigma = {"E0": float(E0 * sd[0]), "moduli": list(Ek[order] * sd[1:K + 1][order]),
              "times": list(tau[order] * sd[K + 1:2 * K + 1][order])}
     sigma.update(sig(x[2 * K + 1:], cov[2 * K + 1:, 2 * K + 1:]))
-    mat = Material.prony(float(E0), Ek[order], tau[order], material.nu)
+    # terms whose modulus underflowed carry no information: drop them (moduli must be > 0)
+    keep = Ek[order] > 1e-12 * (E0 + Ek.sum())
+    sigma["moduli"] = [v for v, k in zip(sigma["moduli"], keep) if k]
+    sigma["times"] = [v for v, k in zip(sigma["times"], keep) if k]
+    E0 = max(E0, 1e-12 * float(Ek.sum()))
+    mat = Material.prony(float(E0), Ek[order][keep], tau[order][keep], material.nu)
     bic = n * math.log(rss / n) + p * math.log(n)
     return PronyFit(mat, physical(x[2 * K + 1:]), sigma, math.sqrt(rss / n), n, bic,
                     int(sol.iterations), bool(sol.converged))

@@ -1,0 +1,129 @@
+"""DMA calibration on the shipped data sets, side by side with pyvisco when it is installed.
+
+For each data set (pyvisco freq_user_raw.csv at T_ref = 25 C; DMA-analysis-suite T0..T105 at
+T_ref = 70 C) this runs :func:`fitting.calibrate` and, if ``import pyvisco`` works, pyvisco's
+default pipeline (load.user_raw, master.get_aT, master.get_curve, prony.discretize,
+prony.fit(opt=True), opt.nprony) in the same process. Both are scored on the **raw unshifted**
+points with each tool's own shift factors: median and 90th percentile of
+|log10(predicted/measured)| for storage and loss separately, number of terms, wall time.
+
+Writes ``<out_dir>/dma_fit.csv``, ``dma_fit.md`` and the calibration plots. pyvisco is not a
+dependency: without it the pyvisco rows are skipped.
+
+    python experiments/dma_fit.py            # or: main(out_dir=..., quick=True)
+"""
+from __future__ import annotations
+
+import contextlib
+import csv
+import io as _io
+import os
+import sys
+import time
+import warnings
+
+import jax
+
+jax.config.update("jax_enable_x64", True)
+
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from fitting import calibrate, dma  # noqa: E402
+
+DATASETS = [("pyvisco_freq_user_raw", lambda: dma.default_data("pyvisco"), 25.0),
+            ("dmasuite_E_0to105C", lambda: dma.default_data("dmasuite"), 70.0)]
+
+
+def _score(pred_s, pred_l, meas_s, meas_l):
+    rs, rl = np.abs(np.log10(pred_s / meas_s)), np.abs(np.log10(pred_l / meas_l))
+    return {"storage_median": float(np.median(rs)), "storage_p90": float(np.percentile(rs, 90)),
+            "loss_median": float(np.median(rl)), "loss_p90": float(np.percentile(rl, 90))}
+
+
+def _pyvisco_csv(table, path):
+    """pyvisco's user_raw format (f [Hz], E_stor/E_loss [MPa], T [C], Set) from a DMATable."""
+    with open(path, "w") as fh:
+        fh.write(f"f,{table.kind}_stor,{table.kind}_loss,T,Set\nHz,MPa,MPa,C,-\n")
+        for f, s, l, T, k in zip(table.f, table.storage, table.loss, table.T, table.set):
+            fh.write(f"{f:.8g},{s / 1e6:.10g},{l / 1e6:.10g},{T:.6g},{k}\n")
+
+
+def run_pyvisco(table, T_ref, work):
+    """pyvisco's default frequency-domain pipeline; returns a result dict or None."""
+    try:
+        from pyvisco import load, master, opt, prony
+    except Exception:  # not installed (or broken): skip gracefully
+        return None
+    path = os.path.join(work, "pyvisco_input.csv")
+    _pyvisco_csv(table, path)
+    warnings.filterwarnings("ignore")
+    t0 = time.perf_counter()
+    m = table.kind
+    df_raw, arr_RefT, units = load.user_raw(load.file(path), "freq", m)
+    # pyvisco needs T_ref among its rounded set temperatures: take the nearest one
+    RefT = float(arr_RefT.iloc[int(np.argmin(np.abs(arr_RefT.values - T_ref)))])
+    with contextlib.redirect_stdout(_io.StringIO()):
+        df_aT, _ = master.get_aT(df_raw, RefT)
+        df_master = master.smooth(master.get_curve(df_raw, df_aT, RefT), 1)
+        df_dis = prony.discretize(df_master, "round")
+        pr, _ = prony.fit(df_dis, df_master, opt=True)
+        dict_prony, N, _ = opt.nprony(df_master, pr, opt=1.5)
+    wall = time.perf_counter() - t0
+    p = dict_prony[N]
+    E_inst, a, tau = p["E_0"], p["df_terms"]["alpha_i"].values, p["df_terms"]["tau_i"].values
+    logaT = df_raw["T_round"].map(dict(zip(df_aT["T"], df_aT["log_aT"]))).values
+    w = 2 * np.pi * df_raw["f_set"].values * 10 ** logaT
+    A = w[:, None] * tau
+    st = E_inst * (1 - a.sum()) + (E_inst * a * A ** 2 / (1 + A ** 2)).sum(1)
+    lo = (E_inst * a * A / (1 + A ** 2)).sum(1)
+    res = _score(st, lo, df_raw[f"{m}_stor"].values, df_raw[f"{m}_loss"].values)
+    res.update(tool="pyvisco", terms=int(N), wall_time=wall, T_ref=RefT, law="table (pyvisco aT)",
+               E_rubbery_MPa=float(E_inst * (1 - a.sum())))
+    return res
+
+
+def main(out_dir="experiments/out", quick=False):
+    """Run both data sets (``quick``: the first only), write CSV + markdown + PNGs, return rows."""
+    os.makedirs(out_dir, exist_ok=True)
+    rows = []
+    for name, get_path, T_ref in DATASETS[:1] if quick else DATASETS:
+        path = get_path()
+        table = dma.read(path)
+        # calibrate once to compile (JIT), then time a second run: steady-state cost
+        if not quick:
+            calibrate(path, T_ref)
+        t0 = time.perf_counter()
+        mat, shift, rep = calibrate(path, T_ref, os.path.join(out_dir, name), stem=name)
+        wall = time.perf_counter() - t0
+        row = dict(dataset=name, tool="vjax fitting", terms=rep.terms, wall_time=wall, T_ref=T_ref,
+                   law=rep.law, E_rubbery_MPa=float(mat.E0) / 1e6, **{k: rep.errors[k] for k in
+                   ("storage_median", "storage_p90", "loss_median", "loss_p90")})
+        rows.append(row)
+        print(f"[{name}] vjax: {rep.terms} terms, {wall:.2f} s\n{rep.table()}")
+        pv = run_pyvisco(table, T_ref, out_dir)
+        if pv is not None:
+            pv["dataset"] = name
+            rows.append(pv)
+            print(f"[{name}] pyvisco: {pv['terms']} terms, {pv['wall_time']:.2f} s, "
+                  f"storage median {pv['storage_median']:.4f}, loss median {pv['loss_median']:.4f}")
+        else:
+            print(f"[{name}] pyvisco not installed: comparison skipped")
+    cols = ["dataset", "tool", "terms", "storage_median", "storage_p90", "loss_median", "loss_p90", "wall_time",
+            "T_ref", "law", "E_rubbery_MPa"]
+    with open(os.path.join(out_dir, "dma_fit.csv"), "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=cols)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: r.get(k) for k in cols})
+    with open(os.path.join(out_dir, "dma_fit.md"), "w") as fh:
+        fh.write("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols) + "\n")
+        for r in rows:
+            fh.write("| " + " | ".join(f"{r.get(k):.4g}" if isinstance(r.get(k), float) else str(r.get(k))
+                                       for k in cols) + " |\n")
+    print(open(os.path.join(out_dir, "dma_fit.md")).read())
+    return rows
+
+
+if __name__ == "__main__":
+    main()
