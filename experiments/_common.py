@@ -82,9 +82,9 @@ def save_figure(fig, path, dpi: int = 150, close: bool = True) -> Path:
 
 
 def _cell(x):
-    """CSV cell: floats in full precision ('%.17g'), everything else as str."""
+    """CSV cell: floats as their shortest exact repr (round-trips), everything else as is."""
     if isinstance(x, float):
-        return format(x, ".17g")
+        return repr(x)
     if hasattr(x, "item") and getattr(x, "ndim", None) == 0:  # numpy / jax scalar
         return _cell(x.item())
     return x
@@ -93,7 +93,7 @@ def _cell(x):
 def write_csv(path, header, rows, comments=()) -> Path:
     """Write a CSV atomically: optional ``# comment`` lines, one header row, then ``rows``.
 
-    ``rows`` is an iterable of sequences; floats are written with 17 significant digits.
+    ``rows`` is an iterable of sequences; floats are written exactly (shortest repr).
     Comment lines (units, parameters, provenance) start with '#' so that
     ``numpy.genfromtxt(..., comments='#')`` and ``pandas.read_csv(comment='#')`` skip them.
     """

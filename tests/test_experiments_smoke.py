@@ -1,0 +1,62 @@
+"""Smoke test of the experiment scripts: quick runs write their files with finite numbers."""
+import csv
+import math
+import sys
+from pathlib import Path
+
+try:
+    import experiments  # noqa: F401  (top-level folder, not installed: needs the repo root on sys.path)
+except ImportError:  # plain `pytest` puts tests/ on sys.path, `python -m pytest` the working dir
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from experiments import _common, bench_operator, foundation_figures  # noqa: E402
+
+
+def _numeric_cells(path):
+    """All cells of a '#'-commented CSV that parse as floats (header excluded)."""
+    with open(path) as f:
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
+    assert len(rows) > 1, f"{path} has no data rows"
+    values = []
+    for row in rows[1:]:
+        for cell in row:
+            try:
+                values.append(float(cell))
+            except ValueError:
+                pass
+    return rows[0], values
+
+
+def test_foundation_figures_quick(tmp_path):
+    text = foundation_figures.main(out_dir=tmp_path, quick=True)
+    assert "trail/lead" in text
+    for name in ("fig2_3_A4_hole.png", "figA6_diametral.png", "ring_profiles_u_theta.png",
+                 "material_curves.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    for name in ("ring_profiles.csv", "material_curves.csv", "material_spectra.csv"):
+        _, values = _numeric_cells(tmp_path / name)
+        assert values and all(math.isfinite(v) for v in values), name
+    assert (tmp_path / "foundation_summary.txt").read_text() == text
+    assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
+
+
+def test_bench_operator_quick(tmp_path):
+    rows = bench_operator.main(out_dir=tmp_path, quick=True)
+    assert (tmp_path / "bench_operator.png").stat().st_size > 10_000
+    header, values = _numeric_cells(tmp_path / "bench_operator.csv")
+    assert header[0] == "N" and len(rows) >= 2
+    finite = [v for v in values if not math.isnan(v)]
+    assert finite and all(math.isfinite(v) and v >= 0 for v in finite)
+    for r in rows:  # every timing of the FFT path is there, and the FFT matches the dense product
+        assert all(math.isfinite(x) and x > 0 for x in r[1:7])
+        if not math.isnan(r[9]):
+            assert r[9] < 1e-10
+
+
+def test_common_helpers(tmp_path):
+    p = _common.write_csv(tmp_path / "sub" / "t.csv", ["a", "b"], [(1, 0.1), ("x", float("nan"))],
+                          comments=["units: none"])
+    assert p.read_text() == "# units: none\na,b\n1,0.1\nx,nan\n"
+    first, median = _common.time_fn(lambda x: x + 1, 1.0, repeats=3)
+    assert first >= 0 and median >= 0
+    assert "-" in _common.format_table(["h"], [[float("nan")]])
