@@ -17,10 +17,14 @@ import jax as _jax
 from .material import Arrhenius, CreepSpectrum, Material, WLF
 from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
 from . import green
+from ._report import ConvergenceError
+from .contact import ContactSolution, SolverOptions, solve_contact
+from .pin import PinResult, pin_in_hole, pin_patch_speed
 from .journal import JournalSolution, journal_bearing
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
-           "element_symbol", "grid", "ring_operator", "green"]
+           "element_symbol", "grid", "ring_operator", "green", "ConvergenceError", "ContactSolution",
+           "SolverOptions", "solve_contact", "PinResult", "pin_in_hole", "pin_patch_speed"]
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(
