@@ -236,8 +236,10 @@ def _guess(pr, cfg, speed_factor=1.0):
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     p = (-12 * pr["eta"] * v * pr["R"] * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
          / (pr["c"] ** 2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
-    p = jnp.maximum(p, 0.0) + pr["ps"] * 0.0
-    return jnp.concatenate([p / pr["p_ref"], jnp.stack([eps, phi])])
+    # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
+    # Newton step can only grow the pressurized zone by one cell per iteration.
+    p = jnp.maximum(p, 0.0) / pr["p_ref"] + 0.1
+    return jnp.concatenate([p, jnp.stack([eps, phi])])
 
 
 def _fields(x, pr, cfg):
@@ -340,33 +342,51 @@ def _newton(x0, pr, cfg):
 
 
 def _staged(pr, cfg, t):
-    """Problem at continuation parameter t in [0, 1]: compliance t, speed M^(1 - t)."""
+    """Problem at continuation parameter t in [0, 2].
+
+    t in [0, 1]: compliance ramped in (factor t) at M times the entrainment speed, with M
+    such that the rigid bearing runs at eps ~ 0.6 (thick film, mild coupling);
+    t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
+    """
     G = pr["W"] * pr["c"] ** 2 / (12 * pr["eta"] * jnp.abs(pr["v"]) * pr["R"] ** 2)
     M = jnp.maximum(1.0, G / _half_sommerfeld_g(0.6))
     q = dict(pr)
-    m = M ** (1.0 - t)
+    m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
+    s = jnp.clip(t, 0.0, 1.0)
     q["v"] = pr["v"] * m
     q["q_ref"] = pr["q_ref"] * m
     if cfg.has_bearing:
-        q["symB"] = pr["symB"] * t
+        q["symB"] = pr["symB"] * s
     if cfg.has_journal:
-        q["symJ"] = pr["symJ"] * t
+        q["symJ"] = pr["symJ"] * s
     return q, m
 
 
 def _continuation(pr, cfg):
+    """Adaptive continuation in t (see :func:`_staged`): a failed stage halves the step,
+    a converged one lets it grow by 1.5. At most ``cfg.stages`` Newton solves."""
     q0, m0 = _staged(pr, cfg, 0.0)
-    x0 = _guess(pr, cfg, m0)
-    ts = (jnp.arange(cfg.stages + 1) / cfg.stages) ** 1.5
+    x0, k0, _, ok0 = _newton(_guess(pr, cfg, m0), q0, cfg)
 
-    def stage(carry, t):
-        x, its, ok = carry
-        q, _ = _staged(pr, cfg, t)
-        x1, k, res, conv = _newton(x, q, cfg)
-        return (x1, its + k, ok & conv), res
+    def cond(s):
+        t, dt, x, its, nst, res, ok = s
+        return (t < 2.0) & (nst < cfg.stages) & (dt > 1e-3) & ok0
 
-    (x, its, ok), res = jax.lax.scan(stage, (x0, 0, True), ts)
-    return x, its, res[-1], ok
+    def body(s):
+        t, dt, x, its, nst, res, ok = s
+        t1 = jnp.minimum(t + dt, 2.0)
+        q, _ = _staged(pr, cfg, t1)
+        x1, k, res1, conv = _newton(x, q, cfg)
+        t = jnp.where(conv, t1, t)
+        x = jnp.where(conv, x1, x)
+        dt = jnp.where(conv, jnp.minimum(1.5 * dt, 0.5), 0.5 * dt)
+        return t, dt, x, its + k, nst + 1, res1, conv
+
+    dtype = x0.dtype
+    init = (jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype), x0, k0, 1,
+            jnp.asarray(jnp.inf, dtype), ok0)
+    t, dt, x, its, nst, res, ok = jax.lax.while_loop(cond, body, init)
+    return x, its, res, ok & (t >= 2.0), nst
 
 
 def _solver(pr, x_init, cfg):
@@ -374,12 +394,11 @@ def _solver(pr, x_init, cfg):
     x, k, res, conv = _newton(x_init, pr, cfg)
     stages = jnp.asarray(0)
     if cfg.solver == "continuation" and compliant:
-        x, k, res, conv = _continuation(pr, cfg)
-        stages = jnp.asarray(cfg.stages + 1)
+        x, k, res, conv, stages = _continuation(pr, cfg)
     elif cfg.solver == "auto" and compliant:
         def fallback(_):
-            x2, k2, res2, conv2 = _continuation(pr, cfg)
-            return x2, k + k2, res2, conv2, jnp.asarray(cfg.stages + 1)
+            x2, k2, res2, conv2, st2 = _continuation(pr, cfg)
+            return x2, k + k2, res2, conv2, st2
         x, k, res, conv, stages = jax.lax.cond(
             conv, lambda _: (x, k, res, conv, stages), fallback, None)
     return x, dict(iterations=jnp.asarray(k), stages=stages, residual=res, converged=conv)
@@ -394,16 +413,20 @@ def _rupture_angle(p, theta, v, cavitation):
     idx = (imax + direction * jnp.arange(n)) % n
     pk = p[idx]
     thr = 1e-9 * jnp.max(jnp.abs(p))
-    kc = jnp.maximum(jnp.argmax(pk <= thr), 1)
-    a, b = pk[kc - 1], pk[kc]
-    if cavitation == "reynolds":  # p ~ (theta_r - theta)^2 before rupture: sqrt(p) is linear
-        sa, sb = jnp.sqrt(jnp.maximum(a, 0.0)), jnp.sqrt(jnp.maximum(b, 0.0))
-        den = sa - sb
-        frac = jnp.where(den > 0, sa / jnp.where(den > 0, den, 1.0), 1.0)
+    kc = jnp.maximum(jnp.argmax(pk <= thr), 2)
+    a, b, z = pk[kc - 2], pk[kc - 1], pk[kc]
+    if cavitation == "sommerfeld":  # p changes sign between kc - 1 and kc: interpolate
+        den = b - z
+        frac = jnp.where(den > 0, b / jnp.where(den > 0, den, 1.0), 0.0)
     else:
-        den = a - b
-        frac = jnp.where(den > 0, a / jnp.where(den > 0, den, 1.0), 1.0)
-    ang = theta[imax] + direction * (kc - 1 + jnp.clip(frac, 0.0, 1.0)) * dth
+        # the last two pressurized nodes, extrapolated: p ~ (theta_r - theta)^2 before a
+        # Reynolds rupture (sqrt(p) linear), p linear at a half-Sommerfeld zero
+        f = jnp.sqrt if cavitation == "reynolds" else (lambda y: y)
+        sa, sb = f(jnp.maximum(a, 0.0)), f(jnp.maximum(b, 0.0))
+        den = sa - sb
+        frac = jnp.where(den > 0, sb / jnp.where(den > 0, den, 1.0), 0.0)
+    # the discrete free boundary lies within the first cavitated cell: frac <= 1.5
+    ang = theta[imax] + direction * (kc - 1 + jnp.clip(frac, 0.0, 1.5)) * dth
     return jnp.angle(jnp.exp(1j * ang))
 
 
@@ -438,7 +461,9 @@ def _outputs(x, pr, cfg, stats, ref_length):
         displacement_journal=f["uJ"], eccentricity=eps,
         eccentricity_effective=_effective_eps(h, c, n), attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * gamma)), min_film=jnp.min(h),
-        rupture_angle=_rupture_angle(pres, th, pr["v"], cfg.cavitation),
+        # half-Sommerfeld: the zero crossing of the unclipped (full-Sommerfeld) pressure
+        rupture_angle=_rupture_angle(p, th, pr["v"], "reynolds" if cfg.cavitation == "reynolds"
+                                     else "sommerfeld"),
         force=rot @ jnp.stack([Fx, Fy]), torque_bearing=CB, torque_journal=CJ,
         torque_journal_about_O=CJ_O, torque_viscoelastic=CvB,
         torque_viscoelastic_journal=CvJ, dissipation_fluid=Df,
@@ -471,11 +496,12 @@ def _run(scalars, bearing, journal, x_init, cfg, memory, green, ref_length):
     pr = {k: v for k, v in pr.items() if v is not None}
     pr["p_ref"] = W / (2 * R)
     pr["q_ref"] = c**3 * pr["p_ref"] / (12 * eta * R) + jnp.abs(pr["v"]) * c
-    if x_init is None:
-        x_init = _guess(pr, cfg)
+    # The starting point travels with the parameters (the residual ignores it), so that
+    # the custom derivative closes over no traced value.
+    pr["x0"] = _guess(pr, cfg) if x_init is None else x_init
 
     def solver(prm):
-        return _solver(prm, jax.lax.stop_gradient(x_init), cfg)
+        return _solver(prm, jax.lax.stop_gradient(prm["x0"]), cfg)
 
     x, stats = implicit_root(lambda xx, prm: _residual(xx, prm, cfg), solver)(pr)
     return _outputs(x, pr, cfg, stats, ref_length)
@@ -486,7 +512,7 @@ def journal_bearing(R_bearing, clearance, viscosity, omega_journal, omega_bearin
                     journal: Material | None = None, memory="periodic", n: int = 256,
                     green: str = "circular", ref_length=1.0, cavitation: str = "reynolds",
                     supply_angle=math.pi, supply_pressure=0.0, initial: JournalSolution | None = None,
-                    solver: str = "auto", stages: int = 12, maxiter: int = 60, tol=None,
+                    solver: str = "auto", stages: int = 40, maxiter: int = 40, tol=None,
                     throw: bool = True) -> JournalSolution:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
