@@ -7,7 +7,7 @@ penetrations), find the pressure sigma (Pa) with
 
     sigma >= 0,   g = M sigma - d(q) >= 0,   sigma * g = 0         (Signorini, element-wise)
 
-and, under load control, the k rigid-body unknowns q from k force conditions W sigma = F.
+and, under load control, the k rigid-body unknowns q from k force conditions force(sigma) = F.
 Several patches on one ring are one problem (they interact through the ring).
 
 The optimality condition is the projected fixed point
@@ -143,91 +143,99 @@ def _scale(op):
     return 1.0 / jnp.real(op.kernel[0])
 
 
-def _solve_forward(op, interference, args, q0, W, F, opts):
+def _no_force(sigma, u, args):
+    return jnp.zeros((0,), sigma.dtype)
+
+
+def _force_rows(force, op, args, sigma):
+    """Rows of d force / d sigma (k, N), u = M sigma included (one reverse pass per row)."""
+    return jax.jacrev(lambda s: force(s, op(s), args))(sigma)
+
+
+def _solve_forward(op, interference, force, args, q0, F, opts):
     """Primal-dual active-set iteration with Newton on q. Returns a ContactSolution."""
     inv = _inverse(op)
     c = _scale(op)
     k = q0.shape[0]
     d_of = lambda q: interference(q, args)
-    jac_of = (lambda q: jax.jacfwd(d_of)(q)) if k else (lambda q: jnp.zeros(d_of(q).shape + (0,)))
+    jac_of = (lambda q: jax.jacfwd(d_of)(q)) if k else (lambda q: jnp.zeros(d_of(q).shape + (0,), q.dtype))
+    tiny = jnp.finfo(q0.dtype).tiny
 
     def residual(sigma, q, u):
         g = u - d_of(q)
-        comp = jnp.max(jnp.abs(jnp.minimum(sigma, c * g))) / jnp.maximum(jnp.max(sigma), jnp.finfo(sigma.dtype).tiny)
-        force = jnp.max(jnp.abs(W @ sigma - F) / jnp.maximum(jnp.abs(F), jnp.finfo(F.dtype).tiny)) if k else 0.0
-        return comp + force, g
+        comp = jnp.max(jnp.abs(jnp.minimum(sigma, c * g))) / jnp.maximum(jnp.max(sigma), tiny)
+        misfit = jnp.max(jnp.abs(force(sigma, u, args) - F) / jnp.maximum(jnp.abs(F), tiny)) if k else 0.0
+        return comp + misfit
 
     def active_set(sigma, q, u):
-        g = u - d_of(q)
-        act = sigma - c * g > 0
+        d = d_of(q)
+        act = sigma - c * (u - d) > 0
         if k:  # load control needs at least one contact point: take the deepest overlap
-            d = d_of(q)
             act = jnp.where(jnp.any(act), act, d == jnp.max(d))
         return act
 
     def body(state):
-        sigma, q, u, act, it, _, _ = state
+        sigma, q, u, act, it, _ = state
         d, J = d_of(q), jac_of(q)
         # Newton step on the current set, solved as a correction of (sigma, q) so that the
-        # inner solver's error does not set a floor on the residual (iterative refinement).
-        # On A: M s - J q = d(q) - J q, i.e. the correction solves M ds - J dq = d - u.
+        # inner solver's error does not set a floor on the residual (iterative refinement):
+        # on A, M ds - J dq = d - u; off A, ds = -sigma; linearized force rows = F - force.
         r_sigma = jnp.where(act, d - u, -sigma)
-        r_q = F - W @ sigma if k else jnp.zeros((0,), sigma.dtype)
+        if k:
+            W = _force_rows(force, op, args, sigma)
+            r_q = F - force(sigma, u, args)
+        else:
+            W, r_q = jnp.zeros((0, sigma.shape[0]), sigma.dtype), jnp.zeros((0,), sigma.dtype)
         ds, dq = _bordered_solve(op, inv, act, J, W, r_sigma, r_q, opts)
         sigma_new, q_new = sigma + ds, q + dq
         u_new = op(sigma_new)
-        res, _ = residual(sigma_new, q_new, u_new)
-        act_new = active_set(sigma_new, q_new, u_new)
-        same = jnp.all(act_new == act)
-        return sigma_new, q_new, u_new, act_new, it + 1, res, same
+        return (sigma_new, q_new, u_new, active_set(sigma_new, q_new, u_new), it + 1,
+                residual(sigma_new, q_new, u_new))
 
     def cond(state):
-        *_, it, res, _ = state
         # The residual certifies the solution by itself: a zero-pressure edge element that
         # still flips in or out of the set does not keep the loop going.
-        done = res <= opts.tol
-        return (~done) & (it < opts.max_iter)
+        *_, it, res = state
+        return (res > opts.tol) & (it < opts.max_iter)
 
-    n = op.n
-    sigma0 = jnp.zeros(n, dtype=jnp.result_type(q0, float))
+    sigma0 = jnp.zeros(op.n, dtype=q0.dtype)
     u0 = jnp.zeros_like(sigma0)
-    act0 = active_set(sigma0, q0, u0)
-    init = (sigma0, q0, u0, act0, jnp.asarray(0), jnp.asarray(jnp.inf, sigma0.dtype), jnp.asarray(False))
-    sigma, q, u, act, it, res, _ = jax.lax.while_loop(cond, body, init)
-    # the active set used for the derivative: where the pressure is carried
-    final_act = active_set(sigma, q, u)
-    return ContactSolution(sigma, u, q, final_act, it, res, res <= opts.tol)
+    init = (sigma0, q0, u0, active_set(sigma0, q0, u0), jnp.asarray(0), jnp.asarray(jnp.inf, q0.dtype))
+    sigma, q, u, _, it, res = jax.lax.while_loop(cond, body, init)
+    # the active set of the derivative: the set of the converged solution
+    return ContactSolution(sigma, u, q, active_set(sigma, q, u), it, res, res <= opts.tol)
 
 
-@partial(jax.custom_jvp, nondiff_argnums=(1, 6))
-def _solve(op, interference, args, q0, W, F, opts):
-    return _solve_forward(op, interference, args, q0, W, F, opts)
+@partial(jax.custom_jvp, nondiff_argnums=(1, 2, 6))
+def _solve(op, interference, force, args, q0, F, opts):
+    return _solve_forward(op, interference, force, args, q0, F, opts)
 
 
 @_solve.defjvp
-def _solve_jvp(interference, opts, primals, tangents):
-    op, args, q0, W, F = primals
-    dop, dargs, _, dW, dF = tangents
-    sol = _solve(op, interference, args, q0, W, F, opts)
+def _solve_jvp(interference, force, opts, primals, tangents):
+    op, args, q0, F = primals
+    dop, dargs, _, dF = tangents
+    sol = _solve(op, interference, force, args, q0, F, opts)
     sigma, q, act = sol.pressure, sol.q, sol.active
-    k = q.shape[0]
+    n, k = sigma.shape[0], q.shape[0]
 
-    def r_params(op_, args_, W_, F_):
-        # residual of the (frozen-set) optimality system as a function of the parameters
+    def r_params(op_, args_, F_):
+        # the (frozen-set) optimality system as a function of the parameters
         r_s = jnp.where(act, op_(sigma) - interference(q, args_), sigma)
-        r_q = W_ @ sigma - F_ if k else jnp.zeros((0,), sigma.dtype)
-        return r_s, r_q
+        return r_s, force(sigma, op_(sigma), args_) - F_
 
-    _, (b_s, b_q) = jax.jvp(r_params, (op, args, W, F), (dop, dargs, dW, dF))
-    J = jax.jacfwd(lambda qq: interference(qq, args))(q) if k else jnp.zeros(sigma.shape + (0,))
+    _, (b_s, b_q) = jax.jvp(r_params, (op, args, F), (dop, dargs, dF))
+    if k:
+        J = jax.jacfwd(lambda qq: interference(qq, args))(q)
+        W = _force_rows(force, op, args, sigma)
+    else:
+        J, W = jnp.zeros((n, 0), sigma.dtype), jnp.zeros((0, n), sigma.dtype)
     inv = _inverse(op)
 
-    n = sigma.shape[0]
     # One flat vector (sigma, q): custom_linear_solve's transpose needs every part of b linear.
     def matvec(v):
         s, qq = v[:n], v[n:]
-        r_q = W @ s if k else jnp.zeros((0,), s.dtype)
-        return jnp.concatenate([jnp.where(act, op(s) - J @ qq, s), r_q])
+        return jnp.concatenate([jnp.where(act, op(s) - J @ qq, s), W @ s])
 
     def solve(_, b):
         return jnp.concatenate(_bordered_solve(op, inv, act, J, W, b[:n], b[n:], opts))
@@ -244,33 +252,34 @@ def _solve_jvp(interference, opts, primals, tangents):
     return sol, tangent
 
 
-def solve_contact(op: RingOperator, interference, args=None, q0=None, W=None, F=None,
+def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None, F=None,
                   options: SolverOptions = SolverOptions()) -> ContactSolution:
     """Frictionless contact of rigid indenters with a ring.
 
     Args:
       op: the ring's operator u = M sigma.
-      interference: ``interference(q, args) -> d`` (N,) overlap (m) of the rigid
-        indenters with the undeformed ring, positive where they overlap; a pure function
-        (no captured arrays that need derivatives: pass them in ``args``).
-      args: PyTree of parameters of ``interference`` (differentiable).
-      q0: (k,) initial guess of the rigid-body unknowns (load control) or None
-        (displacement control, k = 0).
-      W: (k, N) force weights, F: (k,) target forces: load control imposes W @ sigma = F.
+      interference: ``interference(q, args) -> d`` (N,), the overlap (m) of the rigid
+        indenters with the undeformed ring, positive where they overlap. A pure,
+        module-level function (hashable, so jit caches it); parameters that need
+        derivatives go in ``args``.
+      args: PyTree of parameters of ``interference`` and ``force`` (differentiable).
+      q0: (k,) initial guess of the rigid-body unknowns under load control, or None for
+        displacement control (k = 0).
+      force: ``force(sigma, u, args) -> (k,)`` the resultants that load control imposes
+        (any differentiable function of pressure and displacement, e.g. Eq. 2.21 with its
+        slope terms). F: (k,) their target values.
       options: :class:`SolverOptions` (static).
 
-    Returns a :class:`ContactSolution`. Not converging sets ``converged = False``; the
-    scenes turn that into an exception outside jit.
+    Returns a :class:`ContactSolution`; ``converged = False`` when the residual is above
+    ``options.tol`` after ``options.max_iter`` iterations (the scenes raise on it).
     """
-    n = op.n
     if q0 is None:
-        q0 = jnp.zeros((0,))
-        W = jnp.zeros((0, n))
-        F = jnp.zeros((0,))
-    q0 = jnp.atleast_1d(jnp.asarray(q0, dtype=float))
-    W = jnp.atleast_2d(jnp.asarray(W, dtype=float))
-    F = jnp.atleast_1d(jnp.asarray(F, dtype=float))
-    if W.shape != (q0.shape[0], n) or F.shape != q0.shape:
-        raise ValueError(f"load control needs W of shape (k, N) = ({q0.shape[0]}, {n}) and F of shape "
-                         f"({q0.shape[0]},), got W {W.shape} and F {F.shape}")
-    return _solve(op, interference, args, q0, W, F, options)
+        dtype = jnp.result_type(op.symbol.real.dtype)
+        q0, F, force = jnp.zeros((0,), dtype), jnp.zeros((0,), dtype), _no_force
+    else:
+        q0 = jnp.atleast_1d(jnp.asarray(q0))
+        F = jnp.atleast_1d(jnp.asarray(F, dtype=q0.dtype))
+        if force is None or F.shape != q0.shape:
+            raise ValueError(f"load control needs a force function and F of shape {q0.shape}, got "
+                             f"force={force!r} and F of shape {F.shape}")
+    return _solve(op, interference, force, args, q0, F, options)
