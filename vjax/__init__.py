@@ -21,6 +21,7 @@ from ._report import ConvergenceError
 from .contact import ContactSolution, SolverOptions, solve_contact
 from .pin import PinResult, pin_in_hole, pin_patch_speed
 from .journal import JournalSolution, journal_bearing
+from .roller import RollerResult, roller_bearing, roller_patch_speeds
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "green", "ConvergenceError", "ContactSolution",
