@@ -1,0 +1,289 @@
+"""Journal bearing figures (issue 5): thesis Figs. 3.4-3.8, both memory models.
+
+Run::
+
+    PYTHONPATH=. python -m experiments.journal_figures [out_dir] [--quick]
+
+Thesis case (Section 3.2.2, DESIGN.md section 4): R_B = 0.1 m, c = 5e-4 m (R_J = R_B - c),
+eta = 1e-3 Pa s, standard linear solid Einf = 100 MPa, E0 = Einf/100 = 1 MPa, relaxation
+time tau = 1 s, nu = 0.5, F~ = |F|/(E0 R_B) = 2.2e-3 (|F| = 220 N/m, downward), groove at
+the largest clearance at ambient pressure, Reynolds cavitation, log-R reference length 1 m.
+omega~ = omega tau.
+
+- Fig. 3.4 (EHL): rigid journal, elastic bearing E = E0 = 1 MPa, circular (A.45) versus
+  half-plane Green's function. The thesis does not state the speeds of Fig. 3.4: we use
+  those of Fig. 3.5 (omega~_B = 0.2, omega~_J = -0.4). The half-plane kernel's reference
+  length is not stated either; it is run with 1 m (as the thesis's log R) and with R_B.
+- Fig. 3.5 / 3.6: HS, SH, SS at omega~_B = 0.2, omega~_J = -0.4 (Hersey -4.5e-9).
+- Fig. 3.7 / 3.8: HS, omega~_B = 0.2, sweep of omega~_J from -0.4 to -10 (the thesis's
+  range is not stated), solved with warm starts along the sweep.
+
+Every viscoelastic case is run with memory "periodic" (exact steady state) and "thesis"
+(Eq. 2.14/2.16, one revolution of memory); the elastic EHL case does not depend on it.
+
+Torques are by the fluid on the body (CCW positive), in units of |F| R_B. C_J is given
+about the journal centre O' and about O (the thesis's choice, = -C_B up to O(c/R)).
+The viscoelastic share is C_v,B / C_B with C_v,B the torque of the pressure on the deformed
+bearing (= dissipated power / omega_B, Eq. 3.46) and C_B the total bearing torque (shear +
+C_v,B), both about O.
+
+Outputs (in ``out_dir``): ``fig3_4_ehl.png``, ``fig3_5_configurations.png``,
+``fig3_6_ss_contours.png``, ``fig3_7_hs_sweep_profiles.png``, ``fig3_8_hs_sweep_torques.png``,
+``journal_fig3_4.csv``, ``journal_fig3_5.csv``, ``journal_fig3_7.csv``,
+``journal_fig3_8.csv``, ``journal_summary.txt``.
+"""
+from __future__ import annotations
+
+import sys
+
+from experiments import _common
+
+_common.enable_x64()
+
+import jax  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import vjax  # noqa: E402
+
+RB, C, ETA, TAU = 0.1, 5e-4, 1e-3, 1.0
+EINF, E0, NU = 100e6, 1e6, 0.5
+SLS = vjax.Material.sls(E0, EINF, TAU, NU)
+ELASTIC = vjax.Material.elastic(E0, NU)
+LOAD = 2.2e-3 * E0 * RB            # N/m
+WB, WJ = 0.2 / TAU, -0.4 / TAU      # rad/s
+MEMORIES = ("periodic", "thesis")
+CONFIGS = {"HS": dict(bearing=SLS), "SH": dict(journal=SLS), "SS": dict(bearing=SLS, journal=SLS)}
+
+
+def _solve(n, omega_j=WJ, **kw):
+    return vjax.journal_bearing(RB, C, ETA, omega_j, WB, load=LOAD, n=n, **kw)
+
+
+def _deg(x):
+    return np.degrees(np.asarray(x))
+
+
+def _row(s):
+    scale = LOAD * RB
+    return dict(eps=float(s.eccentricity), eps_eff=float(s.eccentricity_effective),
+                attitude_deg=float(_deg(s.attitude_angle)), hmin_over_c=float(s.min_film) / C,
+                pmax_over_E0=float(np.max(s.pressure)) / E0, rupture_deg=float(_deg(s.rupture_angle)),
+                CB=float(s.torque_bearing) / scale, CJ=float(s.torque_journal) / scale,
+                CJ_O=float(s.torque_journal_about_O) / scale, CvB=float(s.torque_viscoelastic) / scale,
+                CvJ=float(s.torque_viscoelastic_journal) / scale,
+                share_pct=100 * float(s.torque_viscoelastic) / float(s.torque_bearing),
+                hersey=float(s.hersey), iterations=int(s.iterations), stages=int(s.stages))
+
+
+def fig_3_4(out, n):
+    cases = {"circular": _solve(n, bearing=ELASTIC),
+             "half-plane (l = 1 m)": _solve(n, bearing=ELASTIC, green="half_plane"),
+             "half-plane (l = R_B)": _solve(n, bearing=ELASTIC, green="half_plane", ref_length=RB)}
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax2 = ax.twinx()
+    styles = {"circular": "-", "half-plane (l = 1 m)": "--", "half-plane (l = R_B)": ":"}
+    th = _deg(cases["circular"].theta)
+    rows = []
+    for name, s in cases.items():
+        ax.plot(th, np.asarray(s.film) / C, "b" + styles[name], label=f"h/c, {name}")
+        ax2.plot(th, np.asarray(s.pressure) / E0, "r" + styles[name], label=f"p/E0, {name}")
+    for i in range(n):
+        rows.append([float(th[i])] + [v for s in cases.values() for v in
+                                       (float(s.film[i]) / C, float(s.pressure[i]) / E0)])
+    ax.set_xlabel("theta from the line of centres [deg]")
+    ax.set_ylabel("h / c", color="b")
+    ax2.set_ylabel("p / E0", color="r")
+    ax.set_title("Fig. 3.4: EHL, rigid journal, elastic bearing E = 1 MPa")
+    ax.legend(loc="upper left", fontsize=7)
+    ax2.legend(loc="upper right", fontsize=7)
+    _common.save_figure(fig, out / "fig3_4_ehl.png")
+    header = ["theta_deg"] + [f"{k}_{q}" for k in ("circ", "hp1m", "hpRB") for q in ("h_over_c", "p_over_E0")]
+    _common.write_csv(out / "journal_fig3_4.csv", header, rows,
+                      comments=[f"Fig. 3.4 EHL, n={n}, omega_B={WB} rad/s, omega_J={WJ} rad/s, "
+                                "F~=2.2e-3; half-plane with reference length 1 m and R_B"])
+    summary = {k: _row(s) for k, s in cases.items()}
+    return summary
+
+
+def fig_3_5_3_6(out, n):
+    sols = {(cfg, mem): _solve(n, memory=mem, **kw) for cfg, kw in CONFIGS.items() for mem in MEMORIES}
+    fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(13, 7), sharex=True)
+    rows = []
+    for i, mem in enumerate(MEMORIES):
+        for j, cfg in enumerate(CONFIGS):
+            s = sols[(cfg, mem)]
+            th = _deg(s.theta)
+            ax = axes[i, j]
+            ax.plot(th, np.asarray(s.film) / C, "b-")
+            ax.set_ylabel("h / c", color="b")
+            ax2 = ax.twinx()
+            ax2.plot(th, np.asarray(s.pressure) / E0, "r-")
+            ax2.set_ylabel("p / E0", color="r")
+            ax.set_title(f"{cfg}, memory={mem}: eps={float(s.eccentricity):.3f}, "
+                         f"att={float(_deg(s.attitude_angle)):.1f} deg", fontsize=8)
+            if i == len(MEMORIES) - 1:
+                ax.set_xlabel("theta from the line of centres [deg]")
+    fig.suptitle("Fig. 3.5: omega~_B = 0.2, omega~_J = -0.4, H = -4.5e-9")
+    _common.save_figure(fig, out / "fig3_5_configurations.png")
+    for (cfg, mem), s in sols.items():
+        for k in range(n):
+            rows.append([cfg, mem, float(_deg(s.theta[k])), float(s.film[k]) / C,
+                         float(s.pressure[k]) / E0, float(s.displacement_bearing[k]),
+                         float(s.displacement_journal[k])])
+    _common.write_csv(out / "journal_fig3_5.csv",
+                      ["config", "memory", "theta_deg", "h_over_c", "p_over_E0", "u_B_m", "u_J_m"], rows,
+                      comments=[f"Fig. 3.5/3.6, n={n}; theta in the line-of-centres frame; "
+                                "u_B outward, u_J inward (positive into each body)"])
+
+    # Fig. 3.6 (SS contours, magnification K = 50) and the polar pressure of Fig. 3.5 (left)
+    K = 50.0
+    fig, axes = plt.subplots(1, len(MEMORIES), figsize=(11, 5.5))
+    for ax, mem in zip(axes, MEMORIES):
+        s = sols[("SS", mem)]
+        gamma = float(s.line_of_centres_angle)
+        th = np.asarray(s.theta) + gamma
+        thc = np.append(th, th[0])
+        e = float(s.eccentricity) * C
+        ox, oy = e * np.cos(gamma), e * np.sin(gamma)
+        RJ = RB - C
+
+        def close(a):
+            return np.append(a, a[0])
+
+        uB, uJ = close(np.asarray(s.displacement_bearing)), close(np.asarray(s.displacement_journal))
+        ax.plot(RB * np.cos(thc) / RB, RB * np.sin(thc) / RB, "--", color="teal", lw=0.8)
+        ax.plot((RB + K * uB) * np.cos(thc) / RB, (RB + K * uB) * np.sin(thc) / RB, "-", color="teal",
+                label="bearing")
+        ax.plot((ox + RJ * np.cos(thc)) / RB, (oy + RJ * np.sin(thc)) / RB, "k--", lw=0.8)
+        ax.plot((ox + (RJ - K * uJ) * np.cos(thc)) / RB, (oy + (RJ - K * uJ) * np.sin(thc)) / RB, "k-",
+                label="journal")
+        p = close(np.asarray(s.pressure))
+        rp = 1.0 + 0.6 * p / p.max()
+        ax.plot(rp * np.cos(thc) * 0.6, rp * np.sin(thc) * 0.6, "r-", lw=0.8, label="pressure (scaled)")
+        F = np.asarray(s.force) / LOAD * 0.5
+        ax.annotate("", xy=(F[0], F[1]), xytext=(0, 0), arrowprops=dict(color="r", arrowstyle="->"))
+        ax.set_aspect("equal")
+        ax.set_title(f"SS, memory={mem}, K={K:g}", fontsize=9)
+        ax.set_xlabel("x / R_B")
+        ax.set_ylabel("y / R_B")
+        ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle("Fig. 3.6: undeformed (dashed) and magnified deformed (solid) contours; "
+                 "red arrow: fluid force on the journal")
+    _common.save_figure(fig, out / "fig3_6_ss_contours.png")
+    return {f"{cfg}/{mem}": _row(s) for (cfg, mem), s in sols.items()}
+
+
+def fig_3_7_3_8(out, n, speeds):
+    table = {}
+    profiles = {}
+    for mem in MEMORIES:
+        prev = None
+        for wj in speeds:
+            s = _solve(n, omega_j=wj / TAU, bearing=SLS, memory=mem, initial=prev, throw=False)
+            if not bool(s.converged):  # a cold start (auto falls back to continuation)
+                s = _solve(n, omega_j=wj / TAU, bearing=SLS, memory=mem)
+            prev = s
+            table[(mem, wj)] = _row(s)
+            profiles[(mem, wj)] = s
+    show = [speeds[0], speeds[len(speeds) // 3], speeds[2 * len(speeds) // 3], speeds[-1]]
+    fig, axes = plt.subplots(len(MEMORIES), 1, figsize=(8, 7), sharex=True)
+    rows = []
+    for ax, mem in zip(axes, MEMORIES):
+        ax2 = ax.twinx()
+        for k, wj in enumerate(show):
+            s = profiles[(mem, wj)]
+            th = _deg(s.theta)
+            col = plt.cm.viridis(k / max(1, len(show) - 1))
+            ax.plot(th, np.asarray(s.film) / C, "-", color=col, label=f"omega~_J = {wj:.2g}")
+            ax2.plot(th, np.asarray(s.pressure) / E0, "--", color=col)
+        ax.set_ylabel("h / c (solid)")
+        ax2.set_ylabel("p / E0 (dashed)")
+        ax.set_title(f"HS, omega~_B = 0.2, memory = {mem}", fontsize=9)
+        ax.legend(fontsize=7)
+    axes[-1].set_xlabel("theta from the line of centres [deg]")
+    fig.suptitle("Fig. 3.7: HS sweep in journal speed")
+    _common.save_figure(fig, out / "fig3_7_hs_sweep_profiles.png")
+    for (mem, wj), s in profiles.items():
+        for k in range(n):
+            rows.append([mem, wj, float(_deg(s.theta[k])), float(s.film[k]) / C, float(s.pressure[k]) / E0])
+    _common.write_csv(out / "journal_fig3_7.csv", ["memory", "omega_J_tilde", "theta_deg", "h_over_c",
+                                                   "p_over_E0"], rows, comments=[f"Fig. 3.7, HS, n={n}"])
+
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+    axr = ax.twinx()
+    bxr = bx.twinx()
+    w = np.abs(np.asarray(speeds))
+    for mem, ls in zip(MEMORIES, ("-", "--")):
+        get = lambda key: np.array([table[(mem, wj)][key] for wj in speeds])  # noqa: E731
+        ax.plot(w, get("CJ_O"), "g" + ls, label=f"C~_J about O ({mem})")
+        ax.plot(w, get("CJ"), "g" + ls, alpha=0.4, label=f"C~_J about O' ({mem})")
+        ax.plot(w, get("CB"), "k" + ls, label=f"C~_B ({mem})")
+        axr.plot(w, get("eps"), "b" + ls, label=f"eps ({mem})")
+        bx.plot(w, get("CvB"), "k" + ls, label=f"C~_v,B ({mem})")
+        bxr.plot(w, get("share_pct"), "m" + ls, label=f"C_v,B / C_B [%] ({mem})")
+    ax.set_ylabel("torque / (|F| R_B)")
+    axr.set_ylabel("eps", color="b")
+    bx.set_ylabel("C~_v,B")
+    bxr.set_ylabel("C_v,B / C_B [%]", color="m")
+    bx.set_xlabel("|omega~_J|")
+    for a in (ax, bx):
+        a.set_xscale("log")
+    ax.legend(fontsize=6, loc="upper left")
+    axr.legend(fontsize=6, loc="upper right")
+    bx.legend(fontsize=6, loc="upper left")
+    bxr.legend(fontsize=6, loc="upper right")
+    fig.suptitle("Fig. 3.8: HS, omega~_B = 0.2, fixed load")
+    _common.save_figure(fig, out / "fig3_8_hs_sweep_torques.png")
+    keys = list(next(iter(table.values())).keys())
+    _common.write_csv(out / "journal_fig3_8.csv", ["memory", "omega_J_tilde"] + keys,
+                      [[mem, wj] + [table[(mem, wj)][k] for k in keys] for (mem, wj) in table],
+                      comments=[f"Fig. 3.8, HS, n={n}; torques in units of |F| R_B, by the fluid on the body",
+                                "CJ about the journal centre O', CJ_O about the bearing centre O; "
+                                "share_pct = 100 CvB / CB"])
+    return table
+
+
+def main(out_dir="experiments/out", quick=False):
+    out = _common.setup(out_dir)
+    n = 128 if quick else 512
+    speeds = list(-np.geomspace(0.4, 10.0, 6 if quick else 20))
+    lines = [f"Journal bearing, thesis Chapter 3 (n = {n}, reference length 1 m unless stated)", ""]
+    s34 = fig_3_4(out, n)
+    hdr = ["case", "eps", "eps_eff", "att[deg]", "hmin/c", "pmax/E0", "CB", "CJ(O')", "iters", "stages"]
+    rows = [[k, v["eps"], v["eps_eff"], v["attitude_deg"], v["hmin_over_c"], v["pmax_over_E0"], v["CB"],
+             v["CJ"], v["iterations"], v["stages"]] for k, v in s34.items()]
+    lines.append("Fig. 3.4 (EHL, elastic bearing E = 1 MPa)")
+    lines.append(_common.format_table(hdr, rows))
+    ratio = s34["half-plane (l = 1 m)"]["hmin_over_c"] / s34["circular"]["hmin_over_c"]
+    ratio_r = s34["half-plane (l = R_B)"]["hmin_over_c"] / s34["circular"]["hmin_over_c"]
+    lines.append(f"min film half-plane/circular: {ratio:.3f} (l = 1 m), {ratio_r:.3f} (l = R_B)")
+    lines.append("")
+    s35 = fig_3_5_3_6(out, n)
+    hdr = ["case", "eps", "eps_eff", "att[deg]", "hmin/c", "pmax/E0", "CB", "CvB", "CJ(O')", "CvJ", "share%", "H"]
+    rows = [[k, v["eps"], v["eps_eff"], v["attitude_deg"], v["hmin_over_c"], v["pmax_over_E0"], v["CB"],
+             v["CvB"], v["CJ"], v["CvJ"], v["share_pct"], v["hersey"]] for k, v in s35.items()]
+    lines.append("Fig. 3.5 / 3.6 (omega~_B = 0.2, omega~_J = -0.4)")
+    lines.append(_common.format_table(hdr, rows))
+    lines.append("")
+    s38 = fig_3_7_3_8(out, n, speeds)
+    hdr = ["memory", "omega~_J", "eps", "hmin/c", "CB", "CJ(O)", "CJ(O')", "CvB", "share%", "iters"]
+    rows = [[mem, wj, v["eps"], v["hmin_over_c"], v["CB"], v["CJ_O"], v["CJ"], v["CvB"], v["share_pct"],
+             v["iterations"]] for (mem, wj), v in s38.items()]
+    lines.append("Fig. 3.7 / 3.8 (HS sweep, omega~_B = 0.2)")
+    lines.append(_common.format_table(hdr, rows))
+    for mem in MEMORIES:
+        share = [s38[(mem, wj)]["share_pct"] for wj in speeds]
+        lines.append(f"viscoelastic share of the bearing torque, memory={mem}: max {max(share):.2f}% "
+                     f"(at |omega~_J| = {abs(speeds[int(np.argmax(share))]):.3g}), "
+                     f"{share[0]:.2f}% at |omega~_J| = {abs(speeds[0]):.3g}, {share[-1]:.2f}% at "
+                     f"{abs(speeds[-1]):.3g} (thesis: about 35% at low shaft speed)")
+    text = "\n".join(lines) + "\n"
+    _common.atomic_write_text(out / "journal_summary.txt", text)
+    print(text)
+    return text
+
+
+if __name__ == "__main__":
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv)
