@@ -103,7 +103,8 @@ def test_linear_interference_solve_contact():
     p_an = P.persson_pressure(np.asarray(th), b, E, R, DR)
     err = np.abs(np.asarray(sol.pressure) - p_an) / p_an.max()
     interior = np.abs(np.angle(np.exp(1j * np.asarray(th)))) < 2 * np.arctan(b) - 4 * np.pi / N
-    assert bool(sol.converged) and err[interior].max() < 2e-5
+    deep = np.abs(np.angle(np.exp(1j * np.asarray(th)))) < 0.9 * 2 * np.arctan(b)
+    assert bool(sol.converged) and err[interior].max() < 1e-3 and err[deep].max() < 1e-5
 
 
 def test_reference_length_dependence_is_a_finite_displacement_effect():
