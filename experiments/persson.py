@@ -43,14 +43,13 @@ Derivation (all in plane strain, nu = 1/2, kappa = 1, E the Young's modulus of t
        gB = (w/S) (cos^2(theta/2) - b^2/(2 S^2)).
 
 5. P0 and F appear on both sides: int p dtheta = P0 and R int p cos = F give two linear
-   equations. Their solution fixes P0/K and F/(R K) as functions of b alone. The load
-   parameter follows as
+   equations. Their solution fixes P0/K and F/(R K) as functions of b alone. With
+   E' = E/(1-nu^2) (plane strain) the load parameter is
 
-       E' dR / F = 2 (1 - nu)^-1 ... = 2 / (F/(R K))   with E' = E/(1-nu^2) (plane strain),
+       E' dR / F = (R K / F) / (1 - nu) = 2 R K / F        (nu = 1/2).
 
-   i.e. E' dR/F = 1/((1-nu) F/(R K)) = 2 R K/F at nu = 1/2. The neat fit (E' dR/F -> 0) is
-   the b where the 2 x 2 system is singular: the limiting contact angle, reached at
-   infinite load (or zero clearance).
+   The neat fit (E' dR/F -> 0) is the b where the 2 x 2 system is singular: the limiting
+   contact angle, reached at infinite load (or zero clearance).
 
 The moments int g dtheta and int g cos(theta) dtheta of the three shape functions are
 integrals of analytic functions after t = b sin(phi). They are computed by Gauss-Legendre
@@ -58,9 +57,15 @@ quadrature in phi, exact to rounding. One check in closed form:
 int gC dtheta = 2 pi (S-1)/S.
 
 Definitions used for the comparison with the thesis: E' = E/(1-nu^2) = 4E/3 (plane-strain
-modulus; the thesis says "equivalent Young's modulus" without a formula; with
-E' = E/(1+nu) = E'/2 all values of E' dR/F halve), alpha the contact semi-angle,
-b = tan(alpha/2). Everything here is pure numpy/scipy.
+modulus; the thesis says "equivalent Young's modulus" without a formula. With
+E/(1+nu) = E'/2 instead, every value of E' dR/F halves; the contact angle at a given load
+does not change). alpha is the contact semi-angle, b = tan(alpha/2). The analytical part
+is pure numpy/scipy.
+
+Results (R = 0.08 m, dR = 4e-5 m, E = 1 MPa): alpha = 1.2395 rad at F~ = F/(E R) =
+2.3e-2 (the thesis's "limit angle 1.24"), and the neat-fit asymptote is
+alpha_c = 1.26272 rad (b_c = 0.73120). The small-load limit is Hertz's conforming
+contact with R_eff = R R_pin/dR.
 """
 from __future__ import annotations
 
@@ -185,7 +190,6 @@ def gauss_chebyshev_pressure(b, m=200):
     A[:m, m + 1] = -2.0 / np.pi * t / (1.0 + t * t) ** 2
     rhs[:m] = 2.0 * np.arctan(t) / (1.0 + t * t)
     # moments by Gauss-Chebyshev (2nd kind) quadrature of q: int w U_j g ds
-    xq, wq = np.cos(np.pi * np.arange(1, 4 * m + 1) / (4 * m + 1)), None
     nq = 4 * m
     xq = np.cos(np.pi * np.arange(1, nq + 1) / (nq + 1))
     wq = np.pi / (nq + 1) * np.sin(np.pi * np.arange(1, nq + 1) / (nq + 1)) ** 2   # weight sqrt(1-x^2)
