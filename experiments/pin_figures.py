@@ -1,0 +1,305 @@
+"""Pin in a hole (thesis Section 2.2): Figs. 2.5-2.10, numerics with both memory models.
+
+Run::
+
+    PYTHONPATH=. python -m experiments.pin_figures [out_dir] [--quick]
+
+**Figs. 2.5-2.6, elastic validation** (R = 0.08 m, dR = 4e-5 m, E = 1 MPa, nu = 0.5):
+pressure p/E versus theta at several loads F~ = F/(E R), numerics (``pin_in_hole``, n =
+2048) against the analytical solution of :mod:`experiments.persson`, and the load parameter
+E' dR/F (E' = E/(1-nu^2)) versus b = tan(alpha/2) up to the neat-fit angle. The numerics use
+``persson.small_displacement_pin``: the rigid-body reference (ref_length) is chosen so that
+the pin offset equals dR, which removes the finite-displacement terms of pin_in_hole (exact
+circle, slope terms of Eq. 2.21). Persson's theory does not have them. The run also reports
+the thesis's default, ref_length = 1 m. The numerical contact angle is found to
+sub-element accuracy with ``persson.edge_angle``.
+
+**Figs. 2.7-2.10, viscoelastic pin** (R = 0.08 m, R' = 0.075 m, SLS E0 = 1 MPa,
+Einf = 10 MPa, tau = 0.01 s, nu = 0.5, F~ = F/(E0 R) = 3.5e-2, ref_length = 1 m as in
+the thesis): omega~ = omega tau from 1e-4 to 1e3, one ``jax.vmap`` over speeds per memory
+model ("periodic" and "thesis"). Fig. 2.7: deformed contour, pin and pressure at five
+speeds. Fig. 2.8: contour magnified K = 10 times. Fig. 2.9: pressure drawn on the hole with
+the net force. Fig. 2.10: C~ = |C_t|/(F R), tan(attitude angle) and R*/R versus omega~.
+
+Outputs in ``out_dir``: ``pin_fig2_5.png``, ``pin_fig2_6.png``, ``pin_fig2_7.png``,
+``pin_fig2_8.png``, ``pin_fig2_9.png``, ``pin_fig2_10.png``, ``pin_persson_pressure.csv``,
+``pin_persson_load_parameter.csv``, ``pin_speed_sweep.csv``, ``pin_profiles.csv``,
+``pin_figures.txt`` (the printed summary).
+"""
+from __future__ import annotations
+
+import sys
+
+from experiments import _common
+
+_common.enable_x64()
+
+import jax  # noqa: E402
+import jax.numpy as jnp  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import vjax  # noqa: E402
+from experiments import persson  # noqa: E402
+
+# Elastic validation case (Figs. 2.5-2.6)
+E_EL, R_EL, DR_EL, NU = 1e6, 0.08, 4e-5, 0.5
+# Viscoelastic case (Figs. 2.7-2.10)
+R, R_PIN, E0, EINF, TAU, F_TILDE = 0.08, 0.075, 1e6, 1e7, 0.01, 3.5e-2
+MEMORIES = ("periodic", "thesis")
+SNAP_SPEEDS = (1e-4, 0.1, 1.0, 10.0, 1e3)
+RATIO_SPEEDS = (0.1, 0.3, 1.0, 3.0)
+COLORS = {"periodic": "C0", "thesis": "C3"}
+
+
+def material():
+    return vjax.Material.sls(E0, EINF, TAU, NU)
+
+
+def sweep(memory, speeds, n):
+    """pin_in_hole at omega = speeds / tau, one vmap over speeds (memory and n static)."""
+    m, load = material(), F_TILDE * E0 * R
+    fn = jax.jit(jax.vmap(lambda w: vjax.pin_in_hole(m, R, R_PIN, load, w / TAU, memory=memory, n=n,
+                                                     throw=False)))
+    res = jax.block_until_ready(fn(jnp.asarray(speeds)))
+    if not bool(np.all(np.asarray(res.converged))):
+        bad = np.asarray(speeds)[~np.asarray(res.converged)]
+        raise vjax.ConvergenceError(f"pin_in_hole ({memory}) did not converge at omega~ = {bad}")
+    return jax.tree_util.tree_map(np.asarray, res)
+
+
+# ----------------------------------------------------------------------------- Persson
+def persson_validation(out, quick):
+    n = 512 if quick else 2048
+    m = vjax.Material.elastic(E_EL, NU)
+    loads = (1e-3, 1e-2, 2.3e-2) if quick else (1e-3, 5e-3, 1e-2, 2.3e-2)
+    ladder = (1e-4, 1e-3, 1e-2, 1e-1) if quick else tuple(np.logspace(-4, -1, 10)) + (2.3e-2, 0.3, 1.0)
+    pressures, lp_rows, summary = [], [], []
+    for Ft in sorted(set(loads) | set(ladder)):
+        load = Ft * E_EL * R_EL
+        r, ref = persson.small_displacement_pin(m, R_EL, DR_EL, load, n)
+        b = persson.persson_b_from_load(load, E_EL, R_EL, DR_EL)
+        th = np.asarray(r.theta)
+        p_num, p_an = np.asarray(r.pressure), persson.persson_pressure(th, b, E_EL, R_EL, DR_EL)
+        alpha = 2 * np.arctan(b)
+        alpha_num = persson.edge_angle(th, p_num)
+        err = np.abs(p_num - p_an) / p_an.max()
+        interior = np.abs(np.angle(np.exp(1j * th))) < alpha - 4 * np.pi / n
+        r1 = vjax.pin_in_hole(m, R_EL, R_EL - DR_EL, load, 0.0, n=n, throw=False)
+        lp = E_EL / (1 - NU**2) * DR_EL / load
+        lp_rows.append([Ft, lp, b, np.tan(alpha_num / 2), alpha, alpha_num, err[interior].max(), err.max(),
+                        float(r1.pressure.max()) / p_an.max() - 1, persson.edge_angle(th, np.asarray(r1.pressure)),
+                        ref, float(r.residual)])
+        if Ft in loads:
+            pressures.append((Ft, th, p_num, p_an))
+            summary.append([Ft, alpha, alpha_num, err[interior].max(), err.max(),
+                            float(r1.pressure.max()) / p_an.max() - 1])
+    _common.write_csv(out / "pin_persson_load_parameter.csv",
+                      ["F_tilde", "load_parameter", "b_analytical", "b_numerical", "alpha_analytical_rad",
+                       "alpha_numerical_rad", "p_err_interior_rel_peak", "p_err_max_rel_peak",
+                       "peak_rel_diff_ref1m", "alpha_numerical_ref1m_rad", "ref_length_m", "residual"],
+                      lp_rows, comments=[f"rigid pin, R={R_EL} m, dR={DR_EL} m, E={E_EL} Pa, nu={NU}, n={n}",
+                                         "load_parameter = E' dR / F with E' = E/(1-nu^2)",
+                                         "numerics: pin_in_hole with ref_length such that pin offset = dR",
+                                         "*_ref1m: pin_in_hole with the thesis's ref_length = 1 m"])
+    rows = []
+    for Ft, th, p_num, p_an in pressures:
+        for t, a, b_ in zip(th, p_num, p_an):
+            if a > 0 or b_ > 0:
+                rows.append([Ft, float(np.angle(np.exp(1j * t))), a / E_EL, b_ / E_EL])
+    _common.write_csv(out / "pin_persson_pressure.csv", ["F_tilde", "theta_rad", "p_over_E_numerical",
+                                                         "p_over_E_analytical"], rows,
+                      comments=[f"n={n}; analytical: experiments/persson.py"])
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
+    for i, (Ft, th, p_num, p_an) in enumerate(pressures):
+        o = np.argsort(np.angle(np.exp(1j * th)))
+        thw = np.angle(np.exp(1j * th))[o]
+        ax.plot(thw, p_num[o] / E_EL, color=f"C{i}", lw=1.5, label=f"F~ = {Ft:g}")
+        sel = o[(p_an[o] > 0)][:: max(1, n // 128)]
+        ax.plot(np.angle(np.exp(1j * th[sel])), p_an[sel] / E_EL, "o", ms=3.5, mfc="none", color="k")
+    ax.plot([], [], "o", mfc="none", color="k", label="analytical (persson.py)")
+    ax.set(xlabel="theta (rad)", ylabel="p~ = p / E", xlim=(-1.5, 1.5),
+           title=f"Fig. 2.5: rigid pin, R = {R_EL} m, dR = {DR_EL:g} m, n = {n}")
+    ax.legend(fontsize=8)
+    _common.save_figure(fig, out / "pin_fig2_5.png")
+
+    bc = persson.persson_limit_b()
+    bs = np.linspace(1e-3, bc, 300)
+    fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
+    ax.plot(bs, persson.persson_load_parameter(bs), "k-", lw=1.2, label="analytical")
+    lr = np.array(lp_rows)
+    ax.plot(lr[:, 3], lr[:, 1], "o", color="C3", ms=5, mfc="none", label=f"pin_in_hole, n = {n}")
+    ax.axvline(bc, color="0.5", ls=":", lw=1)
+    ax.annotate(f"neat fit b = {bc:.4f}\nalpha = {2*np.arctan(bc):.4f} rad", (bc, 2.0), (0.42, 4.0), fontsize=8,
+                arrowprops=dict(arrowstyle="->", color="0.4"))
+    ax.set(xlabel="b = tan(alpha/2)", ylabel="E' dR / F   (E' = E/(1-nu^2))", yscale="log", ylim=(5e-3, 50),
+           title="Fig. 2.6: load parameter versus contact angle")
+    ax.legend(fontsize=8)
+    _common.save_figure(fig, out / "pin_fig2_6.png")
+    return summary, lp_rows, n
+
+
+# ----------------------------------------------------------------------- viscoelastic
+def _snap_index(speeds, w):
+    return int(np.argmin(np.abs(np.log(speeds) - np.log(w))))
+
+
+def viscoelastic(out, quick):
+    n = 256 if quick else 1024
+    speeds = np.logspace(-4, 3, 8 if quick else 57)
+    speeds = np.unique(np.concatenate([speeds, SNAP_SPEEDS, RATIO_SPEEDS]))
+    res = {mem: sweep(mem, speeds, n) for mem in MEMORIES}
+    load = F_TILDE * E0 * R
+
+    rows = []
+    for i, w in enumerate(speeds):
+        row = [w]
+        for mem in MEMORIES:
+            r = res[mem]
+            Fx, Fy = r.force[i]
+            row += [abs(r.torque[i]) / (load * R), np.tan(r.attitude_angle[i]), r.friction_radius[i] / R,
+                    Fx, Fy, r.pin_offset[i], r.contact_angle[i], r.pressure[i].max() / E0, int(r.iterations[i])]
+        rows.append(row)
+    cols = ["C_tilde", "tan_attitude", "Rstar_over_R", "Fx_N_per_m", "Fy_N_per_m", "pin_offset_m",
+            "contact_semi_angle_rad", "p_max_over_E0", "iterations"]
+    _common.write_csv(out / "pin_speed_sweep.csv", ["omega_tilde"] + [f"{c}_{m}" for m in MEMORIES for c in cols],
+                      rows, comments=[f"SLS E0={E0} Pa, Einf={EINF} Pa, tau={TAU} s, nu={NU}; R={R} m, "
+                                      f"R'={R_PIN} m; F~={F_TILDE}; n={n}; ref_length=1 m",
+                                      "C_tilde = |C_t|/(F R) (Eq. 2.24); tan_attitude = Fy/Fx (Eq. 2.23); "
+                                      "Rstar = |C_t|/|F| (Eq. 2.25)"])
+    prow = []
+    for w in SNAP_SPEEDS:
+        i = _snap_index(speeds, w)
+        for mem in MEMORIES:
+            r = res[mem]
+            for t, p, u in zip(r.theta[i], r.pressure[i], r.displacement[i]):
+                prow.append([speeds[i], mem, t, p / E0, u])
+    _common.write_csv(out / "pin_profiles.csv", ["omega_tilde", "memory", "theta_rad", "p_over_E0",
+                                                 "u_r_m"], prow, comments=["u_r positive into the plane"])
+
+    th = res["periodic"].theta[0]
+    tc = np.append(th, th[:1] + 2 * np.pi)
+    closed = lambda a: np.append(a, a[:1])
+
+    # Fig. 2.7: contour (true scale) and pressure, periodic memory solid, thesis dashed
+    fig, axes = plt.subplots(2, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 6.0), constrained_layout=True)
+    for j, w in enumerate(SNAP_SPEEDS):
+        i = _snap_index(speeds, w)
+        ax, axp = axes[0, j], axes[1, j]
+        ax.plot(np.cos(tc), np.sin(tc), "k--", lw=0.8)
+        for mem in MEMORIES:
+            r, ls = res[mem], "-" if mem == "periodic" else "--"
+            rr = 1 + closed(r.displacement[i]) / R
+            ax.plot(rr * np.cos(tc), rr * np.sin(tc), color=COLORS[mem], ls=ls, lw=1.0)
+            e = r.pin_offset[i]
+            ax.plot((e + R_PIN * np.cos(tc)) / R, R_PIN * np.sin(tc) / R, color="orange", ls=ls, lw=0.8)
+            thw = np.angle(np.exp(1j * th))
+            o = np.argsort(thw)
+            axp.plot(thw[o], r.pressure[i][o] / E0, color=COLORS[mem], ls=ls, label=mem)
+        ax.set(aspect="equal", xlim=(-1.15, 1.15), ylim=(-1.15, 1.15), title=f"omega~ = {speeds[i]:g}",
+               xlabel="x~")
+        axp.set(xlim=(-1.2, 1.2), xlabel="theta (rad)")
+        if j == 0:
+            ax.set_ylabel("y~")
+            axp.set_ylabel("p~ = p/E0")
+            axp.legend(fontsize=7)
+    fig.suptitle("Fig. 2.7: hole contour (black dashed: undeformed), pin (orange), pressure; "
+                 "solid: periodic, dashed: thesis memory", fontsize=9)
+    _common.save_figure(fig, out / "pin_fig2_7.png")
+
+    # Fig. 2.8: magnified contour (K = 10), whole hole
+    K = 10.0
+    fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
+    for j, w in enumerate(SNAP_SPEEDS):
+        i = _snap_index(speeds, w)
+        ax = axes[j]
+        ax.plot(np.cos(tc), np.sin(tc), "k--", lw=0.8)
+        for mem in MEMORIES:
+            rr = 1 + K * closed(res[mem].displacement[i]) / R
+            ax.plot(rr * np.cos(tc), rr * np.sin(tc), color=COLORS[mem], ls="-" if mem == "periodic" else "--",
+                    lw=1.0, label=mem)
+        ax.set(aspect="equal", xlim=(-1.6, 1.6), ylim=(-1.6, 1.6), title=f"omega~ = {speeds[i]:g}", xlabel="x~")
+        if j == 0:
+            ax.set_ylabel("y~")
+            ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle(f"Fig. 2.8: deformed hole contour magnified K = {K:g} (u_r positive outward)", fontsize=9)
+    _common.save_figure(fig, out / "pin_fig2_8.png")
+
+    # Fig. 2.9: pressure drawn normal to the hole, net force on the plane
+    scale = 0.25 / max(res[m_].pressure.max() for m_ in MEMORIES)
+    fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
+    for j, w in enumerate(SNAP_SPEEDS):
+        i = _snap_index(speeds, w)
+        ax = axes[j]
+        ax.plot(np.cos(tc), np.sin(tc), "k-", lw=0.8)
+        for mem in MEMORIES:
+            r, ls = res[mem], "-" if mem == "periodic" else "--"
+            rr = 1 + scale * closed(r.pressure[i])
+            ax.plot(rr * np.cos(tc), rr * np.sin(tc), color=COLORS[mem], ls=ls, lw=1.0, label=mem)
+            Fx, Fy = r.force[i]
+            ax.annotate("", xy=(0.8 * Fx / load, 0.8 * Fy / load), xytext=(0, 0),
+                        arrowprops=dict(arrowstyle="->", color=COLORS[mem], ls=ls))
+        ax.set(aspect="equal", xlim=(-1.1, 1.4), ylim=(-1.2, 1.2), title=f"omega~ = {speeds[i]:g}", xlabel="x~")
+        if j == 0:
+            ax.set_ylabel("y~")
+            ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle("Fig. 2.9: pressure on the hole (radial offset) and net force F_tot on the plane "
+                 "(arrows, |F| -> 0.8)", fontsize=9)
+    _common.save_figure(fig, out / "pin_fig2_9.png")
+
+    # Fig. 2.10
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.6), constrained_layout=True)
+    for mem in MEMORIES:
+        r, ls = res[mem], "-" if mem == "periodic" else "--"
+        C = np.abs(r.torque) / (load * R)
+        axes[0].plot(speeds, C, color=COLORS[mem], ls=ls, marker=".", label=mem)
+        axes[1].plot(speeds, np.tan(r.attitude_angle), color=COLORS[mem], ls=ls, marker=".", label=mem)
+        axes[2].plot(speeds, r.friction_radius / R, color=COLORS[mem], ls=ls, marker=".", label=mem)
+    for ax, lab in zip(axes, ("C~ = |C_t| / (F R)", "tan(theta*)", "R* / R")):
+        ax.set(xscale="log", xlabel="omega~ = omega tau", ylabel=lab)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Fig. 2.10: SLS E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, F~ = {F_TILDE}, n = {n}", fontsize=9)
+    _common.save_figure(fig, out / "pin_fig2_10.png")
+    return speeds, res, n
+
+
+def main(out_dir="experiments/out", quick=False):
+    out = _common.setup(out_dir)
+    lines = []
+    summary, lp_rows, n_el = persson_validation(out, quick)
+    lines.append(_common.format_table(
+        ["F~", "alpha_an", "alpha_num", "p err interior", "p err max", "peak diff ref=1m"], summary))
+    bc = persson.persson_limit_b()
+    a23 = 2 * np.arctan(persson.persson_b_from_load(2.3e-2 * E_EL * R_EL, E_EL, R_EL, DR_EL))
+    lines.append(f"Persson (n = {n_el}): alpha at F~ = 2.3e-2: {a23:.4f} rad (thesis 1.24); neat-fit angle "
+                 f"{2*np.arctan(bc):.5f} rad (b = {bc:.5f}). Errors relative to the analytical peak; 'interior' "
+                 "excludes the two elements at each contact edge.")
+    speeds, res, n = viscoelastic(out, quick)
+    load = F_TILDE * E0 * R
+    for mem in MEMORIES:
+        C = np.abs(res[mem].torque) / (load * R)
+        k = int(np.argmax(C))
+        lines.append(f"{mem:>8}: peak C~ = {C[k]:.4g} at omega~ = {speeds[k]:.3g}; peak tan(theta*) = "
+                     f"{np.max(np.tan(res[mem].attitude_angle)):.4g}; peak R*/R = "
+                     f"{np.max(res[mem].friction_radius) / R:.4g}; C~ at omega~ = 1e-4, 1e3: "
+                     f"{C[0]:.2e}, {C[-1]:.2e}")
+    ratio_rows = []
+    for w in RATIO_SPEEDS:
+        i = _snap_index(speeds, w)
+        cp, ct = (abs(res[m_].torque[i]) / (load * R) for m_ in MEMORIES)
+        ep, et = (res[m_].pin_offset[i] for m_ in MEMORIES)
+        ratio_rows.append([speeds[i], cp, ct, cp / ct, ep / et])
+    lines.append(_common.format_table(["omega~", "C~ periodic", "C~ thesis", "ratio periodic/thesis",
+                                       "pin offset ratio"], ratio_rows))
+    lines.append("DESIGN.md quotes a torque ratio of about 1, 1.15, 2, 5 at omega~ = 0.1, 0.3, 1, 3.")
+    text = "\n\n".join(lines)
+    print(text)
+    _common.atomic_write_text(out / "pin_figures.txt", text + "\n")
+    return text
+
+
+if __name__ == "__main__":
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv)
