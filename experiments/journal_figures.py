@@ -34,6 +34,13 @@ Outputs (in ``out_dir``): ``fig3_4_ehl.png``, ``fig3_5_configurations.png``,
 """
 from __future__ import annotations
 
+import os
+
+# jaxlib's dense LU (the Newton step) calls the OpenBLAS bundled with scipy; its threads
+# oversubscribe a loaded 2-core machine (a 514 x 514 solve: 7 ms single-threaded, 60-130 ms
+# threaded). Only effective before numpy/scipy/jax are imported.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import sys
 
 from experiments import _common
@@ -64,6 +71,14 @@ def _deg(x):
     return np.degrees(np.asarray(x))
 
 
+def _centred(theta, *arrays):
+    """Roll the ring by half a turn: theta in [-180, 180) deg, the contact in the middle."""
+    n = len(theta)
+    th = np.roll(_deg(theta), n // 2)
+    th[: n // 2] -= 360.0
+    return (th,) + tuple(np.roll(np.asarray(a), n // 2) for a in arrays)
+
+
 def _row(s):
     scale = LOAD * RB
     return dict(eps=float(s.eccentricity), eps_eff=float(s.eccentricity_effective),
@@ -86,8 +101,9 @@ def fig_3_4(out, n):
     th = _deg(cases["circular"].theta)
     rows = []
     for name, s in cases.items():
-        ax.plot(th, np.asarray(s.film) / C, "b" + styles[name], label=f"h/c, {name}")
-        ax2.plot(th, np.asarray(s.pressure) / E0, "r" + styles[name], label=f"p/E0, {name}")
+        tc, h, p = _centred(s.theta, s.film, s.pressure)
+        ax.plot(tc, h / C, "b" + styles[name], label=f"h/c, {name}")
+        ax2.plot(tc, p / E0, "r" + styles[name], label=f"p/E0, {name}")
     for i in range(n):
         rows.append([float(th[i])] + [v for s in cases.values() for v in
                                        (float(s.film[i]) / C, float(s.pressure[i]) / E0)])
@@ -108,17 +124,18 @@ def fig_3_4(out, n):
 
 def fig_3_5_3_6(out, n):
     sols = {(cfg, mem): _solve(n, memory=mem, **kw) for cfg, kw in CONFIGS.items() for mem in MEMORIES}
-    fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(13, 7), sharex=True)
+    fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(14, 7), sharex=True)
+    fig.subplots_adjust(wspace=0.45)
     rows = []
     for i, mem in enumerate(MEMORIES):
         for j, cfg in enumerate(CONFIGS):
             s = sols[(cfg, mem)]
-            th = _deg(s.theta)
+            th, h, p = _centred(s.theta, s.film, s.pressure)
             ax = axes[i, j]
-            ax.plot(th, np.asarray(s.film) / C, "b-")
+            ax.plot(th, h / C, "b-")
             ax.set_ylabel("h / c", color="b")
             ax2 = ax.twinx()
-            ax2.plot(th, np.asarray(s.pressure) / E0, "r-")
+            ax2.plot(th, p / E0, "r-")
             ax2.set_ylabel("p / E0", color="r")
             ax.set_title(f"{cfg}, memory={mem}: eps={float(s.eccentricity):.3f}, "
                          f"att={float(_deg(s.attitude_angle)):.1f} deg", fontsize=8)
@@ -193,10 +210,10 @@ def fig_3_7_3_8(out, n, speeds):
         ax2 = ax.twinx()
         for k, wj in enumerate(show):
             s = profiles[(mem, wj)]
-            th = _deg(s.theta)
+            th, h, p = _centred(s.theta, s.film, s.pressure)
             col = plt.cm.viridis(k / max(1, len(show) - 1))
-            ax.plot(th, np.asarray(s.film) / C, "-", color=col, label=f"omega~_J = {wj:.2g}")
-            ax2.plot(th, np.asarray(s.pressure) / E0, "--", color=col)
+            ax.plot(th, h / C, "-", color=col, label=f"omega~_J = {wj:.2g}")
+            ax2.plot(th, p / E0, "--", color=col)
         ax.set_ylabel("h / c (solid)")
         ax2.set_ylabel("p / E0 (dashed)")
         ax.set_title(f"HS, omega~_B = 0.2, memory = {mem}", fontsize=9)
