@@ -247,19 +247,26 @@ def small_displacement_pin(material, R, dR, load, n, iterations=6, **kw):
     def offset(log_ref):
         # throw=False: the solver's residual can stall just above its 1e-10 default
         # tolerance at small loads; the caller checks ``residual``.
-        r = vjax.pin_in_hole(material, R, R - dR, load, 0.0, n=n, ref_length=R * np.exp(log_ref),
-                             throw=False, **kw)
+        # e = dR needs a negative mode-1 compliance (ref_length < R), so the operator is
+        # indefinite and a Krylov solve can break down (NaN) at isolated reference
+        # lengths; e is continuous in ref_length, so nudge it and retry.
+        for k in range(5):
+            r = vjax.pin_in_hole(material, R, R - dR, load, 0.0, n=n,
+                                 ref_length=R * np.exp(log_ref + 1e-6 * k), throw=False, **kw)
+            if np.isfinite(float(r.pin_offset)):
+                break
         return float(r.pin_offset) - dR, r
 
-    # e is nearly linear in log(ref_length) (mode 1 of the kernel is a log R term): the
-    # chord slope of the first two points, kept fixed, converges in a few steps.
-    f0, _ = offset(0.0)
-    f1, r = offset(-1.0)
-    slope = f0 - f1
-    l1 = -1.0
+    # e is nearly linear in log(ref_length) (mode 1 of the kernel is a log R term):
+    # secant steps, each limited to a factor e^4 in ref_length.
+    l0, l1 = 0.0, -1.0
+    f0, _ = offset(l0)
+    f1, r = offset(l1)
     for _ in range(iterations):
-        if not abs(f1) > 1e-9 * dR:
+        if not abs(f1) > 1e-9 * dR or f1 == f0:
             break
-        l1 = l1 - f1 / slope
+        step = float(np.clip(-f1 * (l1 - l0) / (f1 - f0), -4.0, 4.0))
+        l0, f0 = l1, f1
+        l1 = l1 + step
         f1, r = offset(l1)
     return r, R * np.exp(l1)

@@ -73,7 +73,7 @@ def persson_validation(out, quick):
     n = 512 if quick else 2048
     m = vjax.Material.elastic(E_EL, NU)
     loads = (1e-3, 1e-2, 2.3e-2) if quick else (1e-3, 5e-3, 1e-2, 2.3e-2)
-    ladder = (1e-4, 1e-3, 1e-2, 1e-1) if quick else tuple(np.logspace(-4, -1, 10)) + (2.3e-2, 0.3, 1.0)
+    ladder = (1e-4, 1e-3, 1e-2, 1e-1) if quick else tuple(np.logspace(-4, -1, 10)) + (2.3e-2,)
     pressures, lp_rows, summary = [], [], []
     for Ft in sorted(set(loads) | set(ladder)):
         load = Ft * E_EL * R_EL
