@@ -18,7 +18,7 @@ def _raise(what, converged, iterations, residual):
         raise ConvergenceError(
             f"{what} did not converge at {bad.size} of {converged.size} point(s) (first: flat index "
             f"{bad[0]}): {np.ravel(iterations)[bad[0]]} iterations, residual "
-            f"{np.ravel(residual)[bad[0]]:.3e}. Pass throw=False to inspect the result instead.")
+            f"{np.ravel(residual)[bad[0]]:.3e}. Pass throw=False to inspect the result, or relax the solver options.")
 
 
 def check_converged(what: str, converged, iterations, residual, throw: bool) -> None:

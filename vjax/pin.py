@@ -23,7 +23,7 @@ import jax.numpy as jnp
 
 from . import _checks
 from ._report import check_converged
-from .contact import SolverOptions, solve_contact
+from .contact import SolverOptions, solve_contact, solve_with_fallback
 from .material import Material
 from .operator import grid, memory_revolutions, ring_operator
 
@@ -114,7 +114,8 @@ def pin_in_hole(material: Material, R, R_pin, load, omega=0.0, *, memory="period
     if r_ is not None and rp is not None and not rp < r_:
         raise ValueError(f"R_pin must be smaller than the hole radius R, got R_pin={R_pin!r} >= R={R!r}")
     memory_revolutions(memory)
-    result = _pin_in_hole(material, R, R_pin, load, omega, ref_length, memory, n, options)
+    result = solve_with_fallback(
+        lambda opts: _pin_in_hole(material, R, R_pin, load, omega, ref_length, memory, n, opts), options)
     check_converged("pin_in_hole contact solve", result.converged, result.iterations, result.residual, throw)
     return result
 
