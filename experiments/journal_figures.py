@@ -79,6 +79,13 @@ def _centred(theta, *arrays):
     return (th,) + tuple(np.roll(np.asarray(a), n // 2) for a in arrays)
 
 
+def _local(u):
+    """u without its Fourier modes 0 and 1."""
+    U = np.fft.rfft(np.asarray(u))
+    U[:2] = 0.0
+    return np.fft.irfft(U, len(u))
+
+
 def _row(s):
     scale = LOAD * RB
     return dict(eps=float(s.eccentricity), eps_eff=float(s.eccentricity_effective),
@@ -168,7 +175,9 @@ def fig_3_5_3_6(out, n):
         def close(a):
             return np.append(a, a[0])
 
-        uB, uJ = close(np.asarray(s.displacement_bearing)), close(np.asarray(s.displacement_journal))
+        # without modes 0 and 1 (uniform dilatation, rigid translation: the latter depends on
+        # the log reference length), so that the local, magnified deformation is visible
+        uB, uJ = close(_local(s.displacement_bearing)), close(_local(s.displacement_journal))
         ax.plot(RB * np.cos(thc) / RB, RB * np.sin(thc) / RB, "--", color="teal", lw=0.8)
         ax.plot((RB + K * uB) * np.cos(thc) / RB, (RB + K * uB) * np.sin(thc) / RB, "-", color="teal",
                 label="bearing")
@@ -185,8 +194,8 @@ def fig_3_5_3_6(out, n):
         ax.set_xlabel("x / R_B")
         ax.set_ylabel("y / R_B")
         ax.legend(fontsize=7, loc="lower left")
-    fig.suptitle("Fig. 3.6: undeformed (dashed) and magnified deformed (solid) contours; "
-                 "red arrow: fluid force on the journal")
+    fig.suptitle("Fig. 3.6: undeformed (dashed) and magnified deformed (solid) contours, modes 0 and 1 "
+                 "of u removed;\nred arrow: fluid force on the journal")
     _common.save_figure(fig, out / "fig3_6_ss_contours.png")
     return {f"{cfg}/{mem}": _row(s) for (cfg, mem), s in sols.items()}
 

@@ -140,6 +140,17 @@ def test_reynolds_grid_convergence(reynolds_refs):
     assert abs(errs[-1]) < 2e-5
 
 
+def test_supply_pressure_datum_and_power_balance():
+    W = 3e5
+    ps = 0.02 * W / (2 * R)
+    sol = journal_bearing(R, C, ETA, WJ, load=W, n=128, supply_pressure=ps)
+    assert bool(sol.converged)
+    assert float(sol.pressure[64]) == pytest.approx(ps, rel=1e-12)    # groove at theta = pi
+    # rigid bodies: journal motor + supply pump = fluid dissipation (exact discretely)
+    power_in = -WJ * float(sol.torque_journal) + ps * float(sol.supply_flow)
+    assert power_in == pytest.approx(float(sol.dissipation_fluid), rel=1e-9)
+
+
 # ---------------------------------------------------------------- (visco)elastic
 
 

@@ -133,7 +133,9 @@ class JournalSolution:
     ``torque_viscoelastic`` (pressure-on-deformed-bearing part of torque_bearing, from the
     dissipated power Eq. 3.46), ``torque_viscoelastic_journal``; dissipation (W/m)
     ``dissipation_fluid``, ``dissipation_bearing``, ``dissipation_journal``;
-    ``supply_flow`` Q_s (m^2/s); ``hersey`` H = eta v R_B/|F| (signed, as the thesis);
+    ``supply_flow`` Q_s (m^2/s, net outflow of the groove cell; the Swift-Stieber model
+    lets the cavity carry a full-film Couette flow, i.e. it does not conserve mass across
+    the cavity, so Q_s can be negative); ``hersey`` H = eta v R_B/|F| (signed, as the thesis);
     ``ref_length`` (m) used by the Green's functions.
 
     Convergence: ``iterations`` (Newton steps in total), ``stages`` (continuation stages,
