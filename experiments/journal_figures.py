@@ -30,7 +30,7 @@ C_v,B), both about O.
 Outputs (in ``out_dir``): ``fig3_4_ehl.png``, ``fig3_5_configurations.png``,
 ``fig3_6_ss_contours.png``, ``fig3_7_hs_sweep_profiles.png``, ``fig3_8_hs_sweep_torques.png``,
 ``journal_fig3_4.csv``, ``journal_fig3_5.csv``, ``journal_fig3_7.csv``,
-``journal_fig3_8.csv``, ``journal_summary.txt``.
+``journal_fig3_8.csv``, ``journal_ref_length.csv``, ``journal_summary.txt``.
 """
 from __future__ import annotations
 
@@ -270,6 +270,34 @@ def fig_3_7_3_8(out, n, speeds):
     return table
 
 
+def ref_length_sensitivity(out, n):
+    """HS at omega~_J = -0.4: what the log reference length does to eps and the share.
+
+    The bearing's hysteretic power, split by Fourier mode: D = Omega R_B (2 pi/n^2)
+    sum_k w_k k Im(S_k) |P_k|^2 (Omega = -omega_B). Mode 1 is the bore's rigid translation,
+    whose compliance carries log(R_B / l): its share of D is set by l, not by the film.
+    """
+    rows = []
+    for mem in MEMORIES:
+        for l in (RB, 1.0, 10.0):
+            s = _solve(n, bearing=SLS, memory=mem, ref_length=l)
+            S = vjax.ring_operator("hole", SLS, RB, n, omega=-WB, memory=mem, ref_length=l).symbol
+            P = np.fft.rfft(np.asarray(s.pressure))
+            k = np.arange(n // 2 + 1)
+            w = np.where((k == 0) | (k == n // 2), 1.0, 2.0)
+            Dk = -WB * RB * 2 * np.pi / n**2 * w * k * np.asarray(S.imag) * np.abs(P) ** 2
+            r = _row(s)
+            rows.append([mem, l, r["eps"], r["eps_eff"], r["hmin_over_c"], r["share_pct"],
+                         100 * Dk[1] / Dk.sum(), 100 * float(s.torque_viscoelastic) /
+                         (float(s.torque_bearing) - float(s.torque_viscoelastic))])
+    header = ["memory", "ref_length_m", "eps", "eps_eff", "hmin_over_c", "share_pct",
+              "mode1_pct_of_D_B", "CvB_over_shear_pct"]
+    _common.write_csv(out / "journal_ref_length.csv", header, rows,
+                      comments=[f"HS, omega~_B = 0.2, omega~_J = -0.4, n = {n}: sensitivity to the "
+                                "log-R reference length"])
+    return _common.format_table(header, rows)
+
+
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
     n = 128 if quick else 512
@@ -298,6 +326,9 @@ def main(out_dir="experiments/out", quick=False):
              v["iterations"]] for (mem, wj), v in s38.items()]
     lines.append("Fig. 3.7 / 3.8 (HS sweep, omega~_B = 0.2)")
     lines.append(_common.format_table(hdr, rows))
+    lines.append("")
+    lines.append("Reference length of the log terms (HS, omega~_J = -0.4)")
+    lines.append(ref_length_sensitivity(out, n))
     for mem in MEMORIES:
         share = [s38[(mem, wj)]["share_pct"] for wj in speeds]
         lines.append(f"viscoelastic share of the bearing torque, memory={mem}: max {max(share):.2f}% "

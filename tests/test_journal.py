@@ -16,7 +16,7 @@ p(theta) = 12 eta R v int (h - h_2)/h^3 from the groove, theta_2 the root of p(t
 by scipy quadrature and brentq), the classical construction of Pinkus & Sternlicht,
 "Theory of Hydrodynamic Lubrication" (1961), ch. 3.
 """
-import math
+import dataclasses
 
 import jax
 import jax.numpy as jnp
@@ -245,17 +245,26 @@ def test_stiff_regime_converges_by_continuation():
           f"{int(sol.stages)} continuation stages")
 
 
-def test_failure_is_reported_not_nan():
-    kw = dict(load=LOAD, n=64, bearing=vjax.Material.elastic(E0, 0.5), solver="newton", maxiter=2)
+def test_failure_is_reported_not_nan_and_auto_recovers():
+    # a concentric start with a soft liner: plain Newton fails (and says so); "auto"
+    # notices and continues from a rigid solution at a higher speed
+    el = vjax.Material.elastic(E0, 0.5)
+    ref = journal_bearing(RB, CB, ETAB, -0.4, 0.2, load=LOAD, n=64, bearing=el)
+    concentric = dataclasses.replace(ref, pressure=jnp.full(64, 0.1 * LOAD / (2 * np.pi * RB)),
+                                     eccentricity=jnp.asarray(0.0), attitude_angle=jnp.asarray(0.0))
+    kw = dict(load=LOAD, n=64, bearing=el, initial=concentric)
     with pytest.raises(RuntimeError, match="iterations"):
-        journal_bearing(RB, CB, ETAB, -0.004, 0.002, **kw)
-    sol = jax.jit(lambda eta: journal_bearing(RB, CB, eta, -0.004, 0.002, throw=False, **kw))(ETAB)
+        journal_bearing(RB, CB, ETAB, -0.4, 0.2, solver="newton", **kw)
+    sol = jax.jit(lambda eta: journal_bearing(RB, CB, eta, -0.4, 0.2, throw=False, solver="newton", **kw))(ETAB)
     assert not bool(sol.converged)
-    assert int(sol.iterations) == 2
+    assert int(sol.iterations) >= 1
     for leaf in jax.tree_util.tree_leaves(sol):
         assert np.all(np.isfinite(np.asarray(leaf, dtype=float)))
     with pytest.raises(RuntimeError):
         sol.check()
+    auto = journal_bearing(RB, CB, ETAB, -0.4, 0.2, **kw)
+    assert bool(auto.converged) and int(auto.stages) > 0
+    assert float(auto.eccentricity) == pytest.approx(float(ref.eccentricity), abs=1e-8)
 
 
 def test_jit_vmap_and_warm_start():
@@ -286,3 +295,28 @@ def test_argument_validation(kwargs, name):
     args.update(kwargs)
     with pytest.raises(ValueError, match=name):
         journal_bearing(**args)
+
+
+def test_float32_runs_without_nan():
+    """vjax does not force float64: in float32 the solves converge to the looser default
+    tolerance (1e-4) and nothing is NaN (run in a fresh interpreter without x64)."""
+    import subprocess
+    import sys
+    import textwrap
+    code = textwrap.dedent("""
+        import warnings; warnings.simplefilter("ignore")
+        import jax, numpy as np, vjax
+        m = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
+        for args, kw in (((0.05, 5e-5, 0.01, 100.0), dict(load=2e5)),
+                         ((0.1, 5e-4, 1e-3, -0.4, 0.2), dict(load=220.0, bearing=m))):
+            s = vjax.journal_bearing(*args, n=32, throw=False, **kw)
+            leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
+            assert s.pressure.dtype == np.float32, s.pressure.dtype
+            assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
+        print("ok")
+    """)
+    import os
+    env = dict(os.environ, JAX_ENABLE_X64="0")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         cwd=str(__import__("pathlib").Path(__file__).resolve().parents[1]), timeout=300)
+    assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]
