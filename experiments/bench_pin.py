@@ -17,7 +17,8 @@ memory, float64, default :class:`vjax.SolverOptions`). For N = 2^8 ... 2^16:
   parameter (E0, E_k, tau_k, nu), by the solver's implicit derivative. We report the
   first call, the warm median and the ratio to the forward solve.
 - ``dense``: a baseline in the thesis's style (Section 2.1: "elements with negative
-  pressure are removed, those with compenetration are added"), in numpy, for N <= 2^12.
+  pressure are removed, those with compenetration are added"), in numpy with one BLAS
+  thread (see the note at the imports), for N <= 2^12.
   The matrix is the dense N x N ``op.dense()`` (assembly timed separately). For a fixed
   pin offset, LAPACK solves M_AA p_A = d_A on the contact set and the set is updated
   until it stops changing. An outer secant iteration on the offset meets the load (the
@@ -48,7 +49,15 @@ import platform
 import sys
 import time
 
-from experiments import _common
+# The dense baseline runs numpy/LAPACK. With OpenBLAS's default threads next to JAX's own
+# thread pool on this 2-core machine, a 200 x 200 solve took 36 ms instead of 0.7 ms
+# (oversubscription). One BLAS thread gives the baseline its fair single-core speed.
+# This only works if numpy is not imported yet, i.e. when run as a script.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("MKL_NUM_THREADS", "1")
+
+from experiments import _common  # noqa: E402
 
 _common.enable_x64()
 
@@ -59,6 +68,13 @@ import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
 from experiments import persson  # noqa: E402
+
+
+def _write_csv(path, header, rows, comments=()):
+    """_common.write_csv with numpy scalars turned into Python numbers first (under numpy 2,
+    repr(np.float64(x)) is 'np.float64(x)', which _common._cell would write verbatim)."""
+    py = lambda x: x.item() if isinstance(x, np.generic) else x
+    return _common.write_csv(path, header, [[py(x) for x in r] for r in rows], comments=comments)
 
 R, R_PIN, E0, EINF, TAU, NU, F_TILDE, OMEGA_TILDE = 0.08, 0.075, 1e6, 1e7, 0.01, 0.5, 3.5e-2, 1.0
 LOAD = F_TILDE * E0 * R
@@ -248,7 +264,7 @@ def main(out_dir="experiments/out", quick=False):
             "grad_first_s", "grad_ms", "grad_ratio", "dense_assembly_s", "dense_s", "dense_solves",
             "dense_torque_rel"]
     table_rows = [[rows[n][c] for c in cols] for n in ns]
-    _common.write_csv(out / "bench_pin.csv", cols + ["torque_Nm_per_m", "pin_offset_m", "converged", "grad_finite"],
+    _write_csv(out / "bench_pin.csv", cols + ["torque_Nm_per_m", "pin_offset_m", "converged", "grad_finite"],
                       [[rows[n][c] for c in cols] + [rows[n]["torque"], rows[n]["offset"], rows[n]["converged"],
                                                       rows[n]["grad_finite"]] for n in ns],
                       comments=[f"pin in hole: R={R}, R'={R_PIN}, SLS E0={E0}, Einf={EINF}, tau={TAU}, nu={NU}, "
@@ -283,7 +299,7 @@ def main(out_dir="experiments/out", quick=False):
         hp_rows.append(row)
     hp_cols = ["n", "vjax_peak_err", "vjax_halfwidth_err", "vjax_ms", "vjax_first_s", "vjax_iterations",
                "vjax_converged", "tamaas_peak_err", "tamaas_halfwidth_err", "tamaas_ms"]
-    _common.write_csv(out / "bench_pin_halfplane.csv", hp_cols, hp_rows,
+    _write_csv(out / "bench_pin_halfplane.csv", hp_cols, hp_rows,
                       comments=[f"Hertz line contact: cell L={L_CELL} m, cylinder R={R_CYL} m, E={E_HP}, "
                                 f"nu={NU_HP}, a/L={A_OVER_L}, F={F:.6g} N/m, p0={p0:.6g} Pa", tam_note])
 
@@ -306,6 +322,8 @@ def main(out_dir="experiments/out", quick=False):
         lines.append(f"observed order of the torque error (fit over N <= {errs[-1][0]}): {-np.polyfit(x, y, 1)[0]:.2f}")
     lines.append(_common.format_table(hp_cols, hp_rows))
     lines.append(f"half-plane: {tam_note}")
+    lines.append(f"machine: {os.cpu_count()} cpus, load average at the end {os.getloadavg()[0]:.2f} "
+                 "(other processes share the cores: medians at small N are noisy)")
     text = "\n\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "bench_pin.txt", text + "\n")

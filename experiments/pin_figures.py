@@ -42,6 +42,13 @@ import numpy as np  # noqa: E402
 import vjax  # noqa: E402
 from experiments import persson  # noqa: E402
 
+
+def _write_csv(path, header, rows, comments=()):
+    """_common.write_csv with numpy scalars turned into Python numbers first (under numpy 2,
+    repr(np.float64(x)) is 'np.float64(x)', which _common._cell would write verbatim)."""
+    py = lambda x: x.item() if isinstance(x, np.generic) else x
+    return _common.write_csv(path, header, [[py(x) for x in r] for r in rows], comments=comments)
+
 # Elastic validation case (Figs. 2.5-2.6)
 E_EL, R_EL, DR_EL, NU = 1e6, 0.08, 4e-5, 0.5
 # Viscoelastic case (Figs. 2.7-2.10)
@@ -94,7 +101,7 @@ def persson_validation(out, quick):
             pressures.append((Ft, th, p_num, p_an))
             summary.append([Ft, alpha, alpha_num, err[interior].max(), err.max(),
                             float(r1.pressure.max()) / p_an.max() - 1])
-    _common.write_csv(out / "pin_persson_load_parameter.csv",
+    _write_csv(out / "pin_persson_load_parameter.csv",
                       ["F_tilde", "load_parameter", "b_analytical", "b_numerical", "alpha_analytical_rad",
                        "alpha_numerical_rad", "p_err_interior_rel_peak", "p_err_max_rel_peak",
                        "peak_rel_diff_ref1m", "alpha_numerical_ref1m_rad", "ref_length_m", "residual"],
@@ -107,7 +114,7 @@ def persson_validation(out, quick):
         for t, a, b_ in zip(th, p_num, p_an):
             if a > 0 or b_ > 0:
                 rows.append([Ft, float(np.angle(np.exp(1j * t))), a / E_EL, b_ / E_EL])
-    _common.write_csv(out / "pin_persson_pressure.csv", ["F_tilde", "theta_rad", "p_over_E_numerical",
+    _write_csv(out / "pin_persson_pressure.csv", ["F_tilde", "theta_rad", "p_over_E_numerical",
                                                          "p_over_E_analytical"], rows,
                       comments=[f"n={n}; analytical: experiments/persson.py"])
 
@@ -163,7 +170,7 @@ def viscoelastic(out, quick):
         rows.append(row)
     cols = ["C_tilde", "tan_attitude", "Rstar_over_R", "Fx_N_per_m", "Fy_N_per_m", "pin_offset_m",
             "contact_semi_angle_rad", "p_max_over_E0", "iterations"]
-    _common.write_csv(out / "pin_speed_sweep.csv", ["omega_tilde"] + [f"{c}_{m}" for m in MEMORIES for c in cols],
+    _write_csv(out / "pin_speed_sweep.csv", ["omega_tilde"] + [f"{c}_{m}" for m in MEMORIES for c in cols],
                       rows, comments=[f"SLS E0={E0} Pa, Einf={EINF} Pa, tau={TAU} s, nu={NU}; R={R} m, "
                                       f"R'={R_PIN} m; F~={F_TILDE}; n={n}; ref_length=1 m",
                                       "C_tilde = |C_t|/(F R) (Eq. 2.24); tan_attitude = Fy/Fx (Eq. 2.23); "
@@ -175,7 +182,7 @@ def viscoelastic(out, quick):
             r = res[mem]
             for t, p, u in zip(r.theta[i], r.pressure[i], r.displacement[i]):
                 prow.append([speeds[i], mem, t, p / E0, u])
-    _common.write_csv(out / "pin_profiles.csv", ["omega_tilde", "memory", "theta_rad", "p_over_E0",
+    _write_csv(out / "pin_profiles.csv", ["omega_tilde", "memory", "theta_rad", "p_over_E0",
                                                  "u_r_m"], prow, comments=["u_r positive into the plane"])
 
     th = res["periodic"].theta[0]
