@@ -53,8 +53,9 @@ Derivation (all in plane strain, nu = 1/2, kappa = 1, E the Young's modulus of t
 
 The moments int g dtheta and int g cos(theta) dtheta of the three shape functions are
 integrals of analytic functions after t = b sin(phi). They are computed by Gauss-Legendre
-quadrature in phi, exact to rounding. One check in closed form:
-int gC dtheta = 2 pi (S-1)/S.
+quadrature in phi, exact to rounding. Checks in closed form (from
+int w/(t^2+g^2) dt = pi (sqrt(g^2+b^2) - g)/g and its derivative in g^2):
+int gC dtheta = 2 pi (S-1)/S, int gC cos = 2 pi (S-1)/S^2, int gB dtheta = pi b^2/S^3.
 
 Definitions used for the comparison with the thesis: E' = E/(1-nu^2) = 4E/3 (plane-strain
 modulus; the thesis says "equivalent Young's modulus" without a formula. With

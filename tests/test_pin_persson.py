@@ -26,6 +26,17 @@ def test_closed_form_matches_gauss_chebyshev():
         assert p0 == pytest.approx(p0_gc, rel=1e-11) and f == pytest.approx(f_gc, rel=1e-11)
 
 
+def test_moments_against_closed_forms():
+    """Quadrature of the moments against the ones derived in closed form (S = sqrt(1+b^2)):
+    int gC = 2 pi (S-1)/S, int gC cos = 2 pi (S-1)/S^2, int gB = pi b^2/S^3."""
+    for b in (0.05, 0.4, 0.73):
+        S = np.sqrt(1 + b * b)
+        m0, m1 = P._moments(b)
+        assert m0[1] == pytest.approx(2 * np.pi * (S - 1) / S, rel=1e-12)
+        assert m1[1] == pytest.approx(2 * np.pi * (S - 1) / S**2, rel=1e-12)
+        assert m0[2] == pytest.approx(np.pi * b * b / S**3, rel=1e-12)
+
+
 def test_limiting_angle_and_load_parameter():
     # thesis: contact semi-angle 1.24 rad at F~ = 2.3e-2 (E' dR/F = 0.029 with E' = E/(1-nu^2))
     b = P.persson_b_from_load(2.3e-2 * E * R, E, R, DR)
