@@ -1,18 +1,21 @@
 """Analytical solution of a rigid pin in a clearance hole in an incompressible elastic plane.
 
-The reference solution of thesis Figs. 2.5-2.6 (A. Persson, "On the stress distribution of
-cylindrical elastic bodies in contact", PhD thesis, Chalmers, Goteborg, 1964; reviewed in
-K. L. Johnson, *Contact Mechanics*, CUP 1985, Sec. 5.3, and M. Ciavarella & P. Decuzzi,
-"The state of stress induced by the plane frictionless cylindrical contact. I. The case of
-elastic similarity", IJSS 38 (2001) 4507-4523, and "II. The general case (elastic
-dissimilarity)", IJSS 38 (2001) 4525-4533). Persson treats a pin and a plate of the same
-material. Here the pin is rigid and the plate incompressible (nu = 1/2, plane strain).
-Dundurs' beta is then 0 as for elastic similarity, so the normal problem again reduces to
-one Cauchy equation on the arc. The n = 0 (hole-widening) mode differs from Persson's
-elastically similar pair, so his numbers do not carry over unchanged. The closed form
-below is **derived here** along the lines of Persson / Ciavarella-Decuzzi; the sources
-above give the method, not these formulas. It is checked against a direct Gauss-Chebyshev
-solution of the same integral equation (``tests/test_pin_persson.py``).
+The reference solution of thesis Figs. 2.5-2.6 is its Ref. [34]: A. Persson, "On the stress
+distribution of cylindrical elastic bodies in contact", PhD thesis, Chalmers, Goteborg,
+1964. The same problem is treated in K. L. Johnson, *Contact Mechanics*, CUP 1985, Ch. 5
+(conforming contact, pin in a hole), and by M. Ciavarella & P. Decuzzi, "The state of
+stress induced by the plane frictionless cylindrical contact", parts I (elastic
+similarity) and II (general case), Int. J. Solids Struct. 38 (2001). These bibliographic
+details are quoted from memory: none of the texts was available here to check pages or
+equation numbers. Persson treats a pin and a plate of the same material. Here the pin is
+rigid and the plate incompressible (nu = 1/2, plane strain). Dundurs' beta is then 0, as
+for elastic similarity, so the normal problem again reduces to one Cauchy equation on the
+arc. The n = 0 (hole-widening) mode differs from Persson's elastically similar pair, so
+his numbers do not carry over unchanged. The closed form below is **derived here** by
+Persson's route (the tan(theta/2) map to a finite-interval Cauchy equation). It is
+verified independently, not against a printed formula: a Gauss-Chebyshev solution of the
+same integral equation agrees to 1e-13 (``tests/test_pin_persson.py``), and so does the
+Hertz limit at small loads.
 
 Derivation (all in plane strain, nu = 1/2, kappa = 1, E the Young's modulus of the plane):
 
@@ -22,13 +25,15 @@ Derivation (all in plane strain, nu = 1/2, kappa = 1, E the Young's modulus of t
    (c depends on the log-R reference length) and is absorbed by the pin offset e.
 2. On the contact arc |theta| < alpha the rigid pin imposes u = e cos(theta) - dR (small
    offset, e << R). Apply (d^2/dtheta^2 + 1): it removes e and mode 1 and turns the
-   symbol n/(n^2-1) into -n, i.e. a Hilbert transform:
+   symbol n/(n^2-1) into -n, i.e. minus the derivative of a Hilbert transform. The mode-1
+   part of p, F cos(theta)/(pi R), reappears because the hole operator annihilates it
+   while (H p)' does not, and the n = 0 part because (H p)' annihilates it:
        (H p)'(theta) = K + P0/(2 pi) + F/(pi R) cos(theta),   K = E dR / ((1+nu) R),
    with (H p)(theta) = (1/2pi) PV int cot((theta-phi)/2) p(phi) dphi, P0 = int p dtheta,
    F = R int p cos(theta) dtheta (the load). Integrated once (p even):
        H p = (K + P0/2pi) theta + (F/(pi R)) sin(theta).
-3. t = tan(theta/2), s = tan(phi/2), b = tan(alpha/2), q(s) = p/(1+s^2): cot((t-s)/2)
-   becomes (1+t^2)/(t-s) - t, and the equation becomes the finite-interval Cauchy equation
+3. t = tan(theta/2), s = tan(phi/2), b = tan(alpha/2), q(s) = p/(1+s^2):
+   cot((theta-phi)/2) becomes (1+t^2)/(t-s) - t, and the equation becomes the finite-interval Cauchy equation
        (1/pi) PV int_{-b}^{b} q(s)/(t-s) ds = f(t)
        f = [2 (K + P0/2pi) arctan t + (2F/(pi R)) t/(1+t^2) + (P0/2pi) t] / (1+t^2).
 4. f is odd, so the solution bounded at both ends exists for every b (smooth contact
