@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from functools import partial
 
 import jax
 import jax.numpy as jnp
@@ -176,41 +177,9 @@ class Material:
         +inf. Bisection in x = log(-s) finds it for spectra spanning any number of decades;
         one final Newton step carries the implicit-function derivative ds/dp = -E_p/E_s
         (the bisection itself has zero derivative). C_k = lambda_k / E'(s_k) > 0.
+        Compiled once per number of terms (also when called outside jit).
         """
-        order = jnp.argsort(self.times)
-        tau, Ek = self.times[order], self.moduli[order]
-
-        def laplace_modulus(s):
-            # E(s) for s on the negative axis, one s per interval (broadcast against tau).
-            st = s[:, None] * tau
-            return self.E0 + jnp.sum(Ek * st / (1.0 + st), axis=-1)
-
-        def slope(s):
-            return jnp.sum(Ek * tau / (1.0 + s[:, None] * tau) ** 2, axis=-1)
-
-        # Interval k lies between -1/tau_k and -1/tau_{k+1} (or 0 for the last one): in
-        # x = log(-s), between log(1/tau_{k+1}) (E -> +inf side, or -inf log for s -> 0)
-        # and log(1/tau_k) (E -> -inf side).
-        tau_s = jax.lax.stop_gradient(tau)
-        x_hi = -jnp.log(tau_s)                                   # pole: E(s) -> -inf just right of it
-        x_lo = jnp.concatenate([-jnp.log(tau_s[1:]), (-jnp.log(tau_s[-1:]) - 60.0)])
-        mat_s = jax.lax.stop_gradient(self)
-
-        def bisect(_, bounds):
-            lo, hi = bounds
-            mid = 0.5 * (lo + hi)
-            s = -jnp.exp(mid)
-            st = s[:, None] * tau_s
-            e = mat_s.E0 + jnp.sum(mat_s.moduli[order] * st / (1.0 + st), axis=-1)
-            # E increases with s, i.e. decreases with x: E > 0 means the root is at larger x.
-            return jnp.where(e > 0, mid, lo), jnp.where(e > 0, hi, mid)
-
-        lo, hi = jax.lax.fori_loop(0, iterations, bisect, (x_lo, x_hi))
-        s0 = jax.lax.stop_gradient(-jnp.exp(0.5 * (lo + hi)))
-        s = s0 - laplace_modulus(s0) / slope(s0)  # exact first derivative, value unchanged to O(err^2)
-        lam = -1.0 / s
-        C = lam / slope(s)
-        return CreepSpectrum(1.0 / self.Einf, C, lam)
+        return _creep_spectrum(self, iterations)
 
     # ---- temperature --------------------------------------------------------------
     def at_temperature(self, shift, T) -> "Material":
@@ -218,6 +187,45 @@ class Material:
         E*(omega, T) = E*(a_T(T) omega, T_ref), i.e. tau_k -> a_T(T) tau_k."""
         aT = 10.0 ** shift.log10_aT(T)
         return dataclasses.replace(self, times=self.times * aT)
+
+
+@partial(jax.jit, static_argnums=1)
+def _creep_spectrum(mat: Material, iterations: int) -> CreepSpectrum:
+    """See :meth:`Material.creep_spectrum`."""
+    order = jnp.argsort(mat.times)
+    tau, Ek = mat.times[order], mat.moduli[order]
+
+    def laplace_modulus(s):
+        # E(s) for s on the negative axis, one s per interval (broadcast against tau).
+        st = s[:, None] * tau
+        return mat.E0 + jnp.sum(Ek * st / (1.0 + st), axis=-1)
+
+    def slope(s):
+        return jnp.sum(Ek * tau / (1.0 + s[:, None] * tau) ** 2, axis=-1)
+
+    # Interval k lies between -1/tau_k and -1/tau_{k+1} (or 0 for the last one): in
+    # x = log(-s), between log(1/tau_{k+1}) (E -> +inf side, or -inf log for s -> 0)
+    # and log(1/tau_k) (E -> -inf side).
+    tau_s = jax.lax.stop_gradient(tau)
+    x_hi = -jnp.log(tau_s)                                   # pole: E(s) -> -inf just right of it
+    x_lo = jnp.concatenate([-jnp.log(tau_s[1:]), (-jnp.log(tau_s[-1:]) - 60.0)])
+    mat_s = jax.lax.stop_gradient(mat)
+
+    def bisect(_, bounds):
+        lo, hi = bounds
+        mid = 0.5 * (lo + hi)
+        s = -jnp.exp(mid)
+        st = s[:, None] * tau_s
+        e = mat_s.E0 + jnp.sum(mat_s.moduli[order] * st / (1.0 + st), axis=-1)
+        # E increases with s, i.e. decreases with x: E > 0 means the root is at larger x.
+        return jnp.where(e > 0, mid, lo), jnp.where(e > 0, hi, mid)
+
+    lo, hi = jax.lax.fori_loop(0, iterations, bisect, (x_lo, x_hi))
+    s0 = jax.lax.stop_gradient(-jnp.exp(0.5 * (lo + hi)))
+    s = s0 - laplace_modulus(s0) / slope(s0)  # exact first derivative, value unchanged to O(err^2)
+    lam = -1.0 / s
+    C = lam / slope(s)
+    return CreepSpectrum(1.0 / mat.Einf, C, lam)
 
 
 # ---- time-temperature shift laws ----------------------------------------------------

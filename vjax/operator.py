@@ -33,6 +33,7 @@ keeps the operator real and equal to its dense matrix.
 from __future__ import annotations
 
 import dataclasses
+from functools import partial
 
 import jax
 import jax.numpy as jnp
@@ -143,6 +144,11 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     _checks.positive("ref_length", ref_length)
     _checks.finite("omega", omega)
     memory_revolutions(memory)
-    modes = jnp.arange(n // 2 + 1)
-    jeff = effective_compliance(material, modes, omega, memory)
-    return RingOperator(R * element_symbol(kind, n, R, material.nu, ref_length) * jeff, int(n))
+    return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length), int(n))
+
+
+@partial(jax.jit, static_argnums=(0, 3, 5))
+def _symbol(kind, material, R, n, omega, memory, ref_length):
+    """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, memory, material shape)."""
+    modes = jnp.arange(n // 2 + 1, dtype=jnp.result_type(float))
+    return R * element_symbol(kind, n, R, material.nu, ref_length) * effective_compliance(material, modes, omega, memory)
