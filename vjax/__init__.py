@@ -22,6 +22,7 @@ from .contact import ContactSolution, SolverOptions, solve_contact
 from .pin import PinResult, pin_in_hole, pin_patch_speed
 from .journal import JournalSolution, journal_bearing
 from .roller import RollerResult, roller_bearing, roller_patch_speeds
+from .sweep import sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "green", "ConvergenceError", "ContactSolution",
