@@ -407,6 +407,11 @@ def _solver(pr, x_init, cfg):
             return x2, k + k2, res2, conv2, st2
         x, k, res, conv, stages = jax.lax.cond(
             conv, lambda _: (x, k, res, conv, stages), fallback, None)
+    # report the residual of the target problem at the returned point (after a failed
+    # continuation x belongs to an intermediate stage)
+    r = jnp.max(jnp.abs(_residual(x, pr, cfg)))
+    res = jnp.where(jnp.isfinite(r), r, jnp.inf)
+    conv = conv & (res < cfg.tol)
     return x, dict(iterations=jnp.asarray(k), stages=stages, residual=res, converged=conv)
 
 
@@ -559,6 +564,16 @@ def journal_bearing(R_bearing, clearance, viscosity, omega_journal, omega_bearin
         _checks.finite(name, val)
     _checks.nonnegative("supply_pressure", supply_pressure)
     _checks.positive("ref_length", ref_length)
+    for name, val in (("R_bearing", R_bearing), ("clearance", clearance), ("viscosity", viscosity),
+                      ("omega_journal", omega_journal), ("omega_bearing", omega_bearing),
+                      ("load_angle", load_angle), ("supply_pressure", supply_pressure),
+                      ("ref_length", ref_length)):
+        _checks.scalar(name, val)
+    if tol is not None and not (isinstance(tol, (int, float, np.floating)) and math.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be a finite number > 0 (or None for the default), got {tol!r}")
+    if initial is not None and not isinstance(initial, JournalSolution):
+        raise ValueError(f"initial must be a JournalSolution of the same bearing (or None), "
+                         f"got {type(initial).__name__}")
     Rv, cv = _checks.values("R_bearing", R_bearing), _checks.values("clearance", clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
         raise ValueError(f"clearance must be < R_bearing, got clearance={clearance!r}, R_bearing={R_bearing!r}")
