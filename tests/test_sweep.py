@@ -33,10 +33,11 @@ def _loop(params):
     return jax.tree_util.tree_map(lambda *xs: np.stack([np.asarray(x) for x in xs]), *rows)
 
 
-@pytest.mark.parametrize("B,chunk", [(10, 3), (10, 5), (10, 10), (10, 64), (1, 4), (7, 1)])
-def test_matches_loop(B, chunk):
+@pytest.mark.parametrize("B,chunk,partition", [(10, 3, "shard_map"), (10, 5, "auto"), (10, 10, "shard_map"),
+                                               (10, 64, "shard_map"), (1, 4, "auto"), (7, 1, "shard_map")])
+def test_matches_loop(B, chunk, partition):
     params = _params(B)
-    out, info = sweep(_fn, params, chunk_size=chunk, progress=False, return_info=True)
+    out, info = sweep(_fn, params, chunk_size=chunk, progress=False, return_info=True, partition=partition)
     ref = _loop(params)
     for k in ref:
         assert out[k].shape == ref[k].shape
@@ -70,6 +71,8 @@ def test_bad_input():
         sweep(_fn, {"x": np.ones((3, 3)), "a": np.ones(4)}, progress=False)
     with pytest.raises(ValueError, match="scalar leaf"):
         sweep(_fn, {"x": np.ones((3, 3)), "a": 1.0}, progress=False)
+    with pytest.raises(ValueError, match="partition"):
+        sweep(_fn, _params(3), progress=False, partition="pmap")
     with pytest.raises(ValueError, match="chunk_size"):
         sweep(_fn, _params(3), chunk_size=0, progress=False)
 
@@ -100,10 +103,14 @@ def test_two_simulated_devices():
             return {"y": jnp.sin(p["x"]) * p["a"], "z": jnp.sum(p["x"] ** 2) * jnp.ones(2)}
         x = np.linspace(0, 1, 33)
         p = {"x": np.stack([x, x + 1], axis=1), "a": np.arange(33.0)}
-        out, info = sweep(f, p, chunk_size=5, progress=False, return_info=True)
-        assert info.devices == 2 and info.chunk_size == 6 and info.chunks == 6 and info.padded == 3, info
-        np.testing.assert_allclose(out["y"], np.sin(p["x"]) * p["a"][:, None], rtol=1e-14)
-        np.testing.assert_allclose(out["z"], np.repeat((p["x"] ** 2).sum(1)[:, None], 2, 1), rtol=1e-14)
+        for part in ("shard_map", "auto"):
+            out, info = sweep(f, p, chunk_size=5, progress=False, return_info=True, partition=part)
+            assert info.devices == 2 and info.chunk_size == 6 and info.chunks == 6 and info.padded == 3, info
+            np.testing.assert_allclose(out["y"], np.sin(p["x"]) * p["a"][:, None], rtol=1e-14)
+            np.testing.assert_allclose(out["z"], np.repeat((p["x"] ** 2).sum(1)[:, None], 2, 1), rtol=1e-14)
+        # each device computes its own block: a per-device count through shard_map's axis index
+        out = sweep(lambda q: q * 0 + jax.lax.axis_index("batch"), np.arange(8.0), progress=False)
+        assert out.tolist() == [0, 0, 0, 0, 1, 1, 1, 1], out
         print("OK", info.devices)
     """)
     env = dict(os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=2", JAX_PLATFORMS="cpu",

@@ -12,11 +12,18 @@ How it works:
   never sees zeros it cannot handle) and the padding is dropped from the result.
 - Each chunk is laid out over a 1-D :class:`jax.sharding.Mesh` of the D devices with
   ``NamedSharding(mesh, PartitionSpec("batch"))``: device d gets points
-  ``[d*chunk/D, (d+1)*chunk/D)`` of the chunk. vmap makes the points independent, so XLA
-  partitions the computation without communication.
+  ``[d*chunk/D, (d+1)*chunk/D)`` of the chunk.
+- ``partition="shard_map"`` (default) runs ``jax.vmap(fn)`` on each device's block with
+  :func:`jax.shard_map`: the devices never talk to each other. ``partition="auto"`` lets
+  XLA's SPMD partitioner split ``jit(vmap(fn))`` by the input sharding instead; for the
+  iterative solvers of vjax that is slower, because a vmapped ``while_loop`` runs until
+  *every* point of the batch has converged, and partitioned automatically its stopping
+  test becomes a cross-device reduction at every iteration of every nested loop (the
+  devices advance in lock step). With shard_map each device stops when its own points
+  have converged.
 - Only one chunk's inputs, outputs and intermediates live on the devices at a time: the
-  chunk size bounds device memory (:attr:`SweepInfo.memory` reports XLA's estimate for one
-  chunk). Outputs are copied to the host after each chunk.
+  chunk size bounds device memory (:attr:`SweepInfo.memory` reports XLA's estimate per device
+  for one chunk). Outputs are copied to the host after each chunk.
 - A text progress bar over chunks goes to stderr (no extra dependency); only process 0
   prints.
 
@@ -61,9 +68,10 @@ class SweepInfo:
     points: B. chunk_size: points per chunk (a multiple of ``devices``). chunks: number of
     chunks. padded: points added to the last chunk. devices: D. compile_s: tracing and
     compilation of the chunk function (the first chunk's extra time). run_s: wall time of
-    all chunks after compilation. points_per_s: B / run_s. memory: bytes for one chunk from
-    XLA's ``memory_analysis`` of the compiled function (argument, output, temp and total;
-    for all devices together), or None where the backend does not report it.
+    all chunks after compilation. points_per_s: B / run_s. memory: bytes for one chunk **per
+    device** from XLA's ``memory_analysis`` of the compiled (SPMD-partitioned) function
+    (argument, output, temp, total = their sum; multiply by ``devices`` for the whole
+    chunk), or None where the backend does not report it.
     """
 
     points: int
@@ -137,7 +145,7 @@ def _to_host(x):
 
 
 def sweep(fn, params, *, chunk_size: int | None = None, devices=None, progress: bool = True,
-          desc: str = "sweep", return_info: bool = False):
+          desc: str = "sweep", return_info: bool = False, partition: str = "shard_map"):
     """Evaluate ``fn`` at every point of the batch ``params``, vmapped, chunked and sharded.
 
     Args:
@@ -152,6 +160,8 @@ def sweep(fn, params, *, chunk_size: int | None = None, devices=None, progress: 
       progress: draw a progress bar over chunks on stderr.
       desc: label of the progress bar.
       return_info: also return a :class:`SweepInfo`.
+      partition: "shard_map" (default; independent per-device blocks) or "auto" (XLA SPMD
+        partitioning of the jitted vmap), see the module docstring.
 
     Returns the outputs of ``fn`` stacked along a leading axis of length B (NumPy arrays,
     same PyTree structure), and the :class:`SweepInfo` when ``return_info``.
@@ -173,7 +183,14 @@ def sweep(fn, params, *, chunk_size: int | None = None, devices=None, progress: 
     sharding = NamedSharding(mesh, PartitionSpec("batch"))
     host = jax.tree_util.tree_map(np.asarray, params)
     # every output leaf is split along its batch axis like the inputs
-    f = jax.jit(jax.vmap(fn), in_shardings=(sharding,), out_shardings=sharding)
+    if partition == "shard_map":
+        spec = PartitionSpec("batch")
+        f = jax.jit(jax.shard_map(jax.vmap(fn), mesh=mesh, in_specs=(spec,), out_specs=spec, check_vma=False),
+                    in_shardings=(sharding,), out_shardings=sharding)
+    elif partition == "auto":
+        f = jax.jit(jax.vmap(fn), in_shardings=(sharding,), out_shardings=sharding)
+    else:
+        raise ValueError(f"partition must be 'shard_map' or 'auto', got {partition!r}")
 
     def chunk_arrays(i):
         lo, hi = i * chunk, min((i + 1) * chunk, B)
