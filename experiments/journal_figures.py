@@ -300,8 +300,8 @@ def ref_length_sensitivity(out, n):
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
-    n = 128 if quick else 512
-    speeds = list(-np.geomspace(0.4, 10.0, 6 if quick else 20))
+    n = 64 if quick else 512
+    speeds = list(-np.geomspace(0.4, 10.0, 4 if quick else 20))
     lines = [f"Journal bearing, thesis Chapter 3 (n = {n}, reference length 1 m unless stated)", ""]
     s34 = fig_3_4(out, n)
     hdr = ["case", "eps", "eps_eff", "att[deg]", "hmin/c", "pmax/E0", "CB", "CJ(O')", "iters", "stages"]
