@@ -75,6 +75,8 @@ contact with R_eff = R R_pin/dR.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 NU = 0.5
@@ -98,9 +100,14 @@ def shape_functions(theta, b):
     return z(gK), z(gC), z(gB)
 
 
+@functools.lru_cache(maxsize=None)
+def _gauss_legendre(n):
+    return np.polynomial.legendre.leggauss(n)      # an n x n eigenproblem: compute once
+
+
 def _moments(b, n=400):
     """int g dtheta and int g cos(theta) dtheta over the arc for g in (gK, gC, gB): arrays (3,), (3,)."""
-    x, wq = np.polynomial.legendre.leggauss(n)
+    x, wq = _gauss_legendre(n)
     phi = 0.5 * np.pi * x
     t = b * np.sin(phi)
     jac = 0.5 * np.pi * wq * 2.0 * b * np.cos(phi) / (1.0 + t * t)      # dtheta = 2 dt / (1+t^2)
@@ -141,6 +148,7 @@ def persson_load_parameter(b, nu=NU):
     return out[()] if out.ndim == 0 else out
 
 
+@functools.lru_cache(maxsize=None)
 def persson_limit_b():
     """b = tan(alpha_c/2) of the neat-fit (limiting) contact angle: det(I - M) = 0."""
     from scipy.optimize import brentq
