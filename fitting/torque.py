@@ -1,0 +1,512 @@
+"""Refine a Prony material and its WLF shift against measured bearing friction torque.
+
+Data: torque-versus-speed curves of a bearing, as a CSV (:func:`read_torque_csv`)::
+
+    # comment lines start with '#'
+    speed_rpm, temperature_C, load_N_per_m, torque_Nm_per_m[, scatter_Nm_per_m]
+
+``speed_rpm`` is the shaft (inner ring or pin) speed in rev/min, > 0; ``temperature_C`` in
+C; ``load_N_per_m`` the radial load per unit axial length (N/m), > 0; ``torque_Nm_per_m``
+the friction torque per unit length (N m/m); the optional ``scatter`` column is the
+standard deviation of each torque (same unit, > 0). Columns are matched by name
+(case-insensitive, units in the name optional: ``rpm``, ``speed``, ``T``, ``temperature``,
+``load``, ``F``, ``torque``, ``scatter``, ``sigma``, ``std``).
+
+Model: a bearing scene evaluated at each point with the material at the point's
+temperature (:meth:`vjax.Material.at_temperature`): :func:`roller_model` (needle roller
+bearing, torque on the fixed outer ring) or :func:`pin_model` (a polymer pin joint: rigid
+pin turning in a viscoelastic plate). Both scenes carry implicit derivatives, so the
+gradient of the torque with respect to the material is one linear solve per solve at the
+converged state, not a differentiation through iterations.
+
+Parameters (:class:`Params`): log E0, log E_k, optionally log tau_k, log C1, log C2. The
+fit works on the logarithms: positivity is automatic and a step means the same relative
+change for a 1e9 Pa modulus and a C1 of 20.
+
+Objective (dimensionless, a chi^2 per torque point)::
+
+    loss = (1/N_t) [ sum_i ((T_model,i - T_i) / s_i)^2 + w_dma sum_j (r_j / s_dma)^2 ]
+
+with r_j the log10 residuals of the storage and loss moduli on raw DMA points (the material
+stays consistent with its DMA; ``w_dma = 0`` fits the torque only), s_i the torque scatter
+(or ``rel_scatter`` times the torque when the file has none) and s_dma the DMA scatter in
+decades.
+
+Optimizer: optax Adam on the log-parameters. Why Adam: the parameters span 10+ decades in
+value and their torque sensitivities span several more (a relaxation time far outside the
+tested frequencies has almost none); Adam's per-parameter step normalization makes the
+step a relative change of roughly the learning rate for every parameter, whatever its
+scale, and it only needs the gradient. A (Levenberg-Marquardt / Gauss-Newton) solver would
+need a damping that copes with a nearly singular J^T J, which is exactly what the torque
+data give (see the identifiability report). The Jacobian (forward mode through the
+implicit derivatives, one compiled function that returns residuals and Jacobian together)
+gives both the gradient 2 J^T r / N_t and, at the end, the Gauss-Newton covariance
+(J^T J)^-1 and the singular values that say which parameters the torque cannot identify.
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import math
+import sys
+import time
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+import vjax
+from vjax.material import Material, WLF
+
+__all__ = ["TorqueData", "TorqueFormatError", "read_torque_csv", "write_torque_csv", "roller_model", "pin_model",
+           "Params", "TorqueFit", "fit_torque", "residual_jacobian", "identifiability", "gauss_newton_cov",
+           "gradient_check"]
+
+
+# ---- data ------------------------------------------------------------------------------
+class TorqueFormatError(ValueError):
+    """A torque CSV that cannot be used; the message names the file, the line and the problem."""
+
+    def __init__(self, path, line, problem):
+        where = f"{path}" + (f", line {line}" if line else "")
+        super().__init__(f"{where}: {problem}")
+
+
+@dataclasses.dataclass(frozen=True)
+class TorqueData:
+    """Torque points: rpm (rev/min), T (C), load (N/m), torque (N m/m), scatter (N m/m or None)."""
+
+    rpm: np.ndarray
+    T: np.ndarray
+    load: np.ndarray
+    torque: np.ndarray
+    scatter: np.ndarray | None = None
+    source: str = "arrays"
+
+    def __len__(self) -> int:
+        return len(self.rpm)
+
+    @property
+    def omega(self):
+        """Shaft angular speed (rad/s)."""
+        return self.rpm * (2 * math.pi / 60.0)
+
+    def sigma(self, rel_scatter=0.05):
+        """Per-point standard deviation: the scatter column, else rel_scatter * |torque|."""
+        if self.scatter is not None:
+            return self.scatter
+        return rel_scatter * np.maximum(np.abs(self.torque), 1e-300)
+
+    def conditions(self):
+        """Distinct (T, load) pairs, in order of appearance."""
+        seen = []
+        for t, f in zip(self.T, self.load):
+            if (t, f) not in seen:
+                seen.append((t, f))
+        return seen
+
+
+_ALIASES = {
+    "rpm": ("speed_rpm", "rpm", "speed", "shaft_speed", "n_rpm", "shaft_speed_rpm"),
+    "T": ("temperature_c", "temperature", "t", "t_c", "temp", "temp_c"),
+    "load": ("load_n_per_m", "load", "f", "force", "load_n/m", "f_n_per_m"),
+    "torque": ("torque_nm_per_m", "torque", "c_t", "torque_n_m_per_m", "torque_nm/m"),
+    "scatter": ("scatter_nm_per_m", "scatter", "sigma", "std", "torque_std", "scatter_n_m_per_m"),
+}
+
+
+def _canon(name: str):
+    key = name.strip().lower().replace(" ", "_").replace("[", "_").replace("]", "").replace("(", "_") \
+        .replace(")", "").strip("_")
+    while "__" in key:
+        key = key.replace("__", "_")
+    for canon, names in _ALIASES.items():
+        if key in names:
+            return canon
+    return None
+
+
+def read_torque_csv(path) -> TorqueData:
+    """Read a torque CSV (module docstring); raises :class:`TorqueFormatError` naming the
+    file and line for: an empty file, missing or duplicated columns, non-numeric or
+    non-finite values, speed or load <= 0, scatter <= 0, or a curve with a repeated speed."""
+    path = str(path)
+    try:
+        with open(path, encoding="utf-8") as fh:
+            lines = fh.read().splitlines()
+    except OSError as e:
+        raise TorqueFormatError(path, None, f"cannot read ({e.strerror})") from None
+    body = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")]
+    if not body:
+        raise TorqueFormatError(path, None, "no header and no data (empty file or only comments)")
+    hline, header = body[0]
+    names = [h.strip() for h in next(csv.reader([header]))]
+    cols = {}
+    for j, h in enumerate(names):
+        c = _canon(h)
+        if c is None:
+            continue
+        if c in cols:
+            raise TorqueFormatError(path, hline, f"two columns mean {c!r}: {names[cols[c]]!r} and {h!r}")
+        cols[c] = j
+    missing = [c for c in ("rpm", "T", "load", "torque") if c not in cols]
+    if missing:
+        want = {"rpm": "speed_rpm", "T": "temperature_C", "load": "load_N_per_m", "torque": "torque_Nm_per_m"}
+        raise TorqueFormatError(path, hline, f"missing column(s) {[want[m] for m in missing]}; found {names}")
+    rows = {c: [] for c in cols}
+    for lineno, ln in body[1:]:
+        toks = [t.strip() for t in next(csv.reader([ln]))]
+        if len(toks) < len(names):
+            raise TorqueFormatError(path, lineno, f"expected {len(names)} values, got {len(toks)}")
+        for c, j in cols.items():
+            try:
+                v = float(toks[j])
+            except ValueError:
+                raise TorqueFormatError(path, lineno, f"{names[j]!r} is not a number: {toks[j]!r}") from None
+            if not math.isfinite(v):
+                raise TorqueFormatError(path, lineno, f"{names[j]!r} is not finite: {toks[j]!r}")
+            if c in ("rpm", "load", "scatter") and v <= 0:
+                raise TorqueFormatError(path, lineno, f"{names[j]!r} must be > 0, got {v!r}")
+            rows[c].append(v)
+    if not rows["rpm"]:
+        raise TorqueFormatError(path, None, "header but no data rows")
+    a = {c: np.asarray(v, float) for c, v in rows.items()}
+    for t, f in {(t, f) for t, f in zip(a["T"], a["load"])}:
+        sel = (a["T"] == t) & (a["load"] == f)
+        s = a["rpm"][sel]
+        if len(np.unique(s)) != len(s):
+            raise TorqueFormatError(path, None, f"repeated speed in the curve at T={t:g} C, load={f:g} N/m")
+    return TorqueData(a["rpm"], a["T"], a["load"], a["torque"], a.get("scatter"), source=path)
+
+
+def write_torque_csv(path, data: TorqueData, comments=()) -> None:
+    """Write ``data`` in the format :func:`read_torque_csv` reads (atomically)."""
+    from .io import atomic_write
+    lines = [f"# {c}" for c in comments]
+    head = ["speed_rpm", "temperature_C", "load_N_per_m", "torque_Nm_per_m"]
+    if data.scatter is not None:
+        head.append("scatter_Nm_per_m")
+    lines.append(",".join(head))
+    for i in range(len(data)):
+        vals = [data.rpm[i], data.T[i], data.load[i], data.torque[i]]
+        if data.scatter is not None:
+            vals.append(data.scatter[i])
+        lines.append(",".join(repr(float(v)) for v in vals))
+    atomic_write(path, "\n".join(lines) + "\n")
+
+
+# ---- bearing models --------------------------------------------------------------------
+def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, n=256, memory="periodic",
+                 clearance=None):
+    """Needle roller bearing (:func:`vjax.roller_bearing`), both rings of the fitted material,
+    outer ring fixed, shaft (inner ring) at the given rpm; returns the friction torque on the
+    outer ring (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
+    def model(material, shift, rpm, T, load):
+        m = material.at_temperature(shift, T)
+        r = vjax.roller_bearing(m, m, R_outer, R_inner, roller_diameter, n_rollers, load,
+                                omega_inner=rpm * (2 * jnp.pi / 60.0), clearance=clearance, memory=memory, n=n,
+                                throw=False)
+        return r.torque[0], r.converged
+    model.scene = (f"roller_bearing(R_O={R_outer}, R_I={R_inner}, D={roller_diameter}, Z={n_rollers}, n={n}, "
+                   f"memory={memory!r}, clearance={clearance})")
+    return model
+
+
+def pin_model(R=0.01, R_pin=0.0099, n=128, memory="periodic"):
+    """Polymer pin joint (:func:`vjax.pin_in_hole`): rigid pin of radius R_pin turning at the
+    given rpm in a hole of radius R in a plate of the fitted material; returns the friction
+    torque (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
+    def model(material, shift, rpm, T, load):
+        m = material.at_temperature(shift, T)
+        w = vjax.pin_patch_speed(rpm * (2 * jnp.pi / 60.0), R, R_pin)
+        r = vjax.pin_in_hole(m, R, R_pin, load, omega=w, n=n, memory=memory, throw=False)
+        return r.torque, r.converged
+    model.scene = f"pin_in_hole(R={R}, R_pin={R_pin}, n={n}, memory={memory!r})"
+    return model
+
+
+# ---- parameters ------------------------------------------------------------------------
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Log-parametrization of a Prony material + WLF shift.
+
+    x = [log E0, log E_1..E_K, (log tau_1..tau_K if fit_times), log C1, log C2]; T_ref and nu
+    are fixed. :meth:`unpack` builds the material and shift from x inside jit (no checks).
+    """
+
+    K: int
+    fit_times: bool
+    times: np.ndarray
+    nu: float
+    T_ref: float
+
+    @classmethod
+    def of(cls, material: Material, shift: WLF, fit_times: bool = False):
+        if not isinstance(shift, WLF):
+            raise ValueError(f"torque fitting refines a WLF shift law, got {type(shift).__name__}")
+        return cls(int(material.moduli.shape[0]), bool(fit_times), np.asarray(material.times, float),
+                   float(material.nu), float(shift.T_ref))
+
+    def names(self):
+        K = self.K
+        n = ["E0"] + [f"E_{k + 1}" for k in range(K)]
+        if self.fit_times:
+            n += [f"tau_{k + 1}" for k in range(K)]
+        return n + ["C1", "C2"]
+
+    def pack(self, material: Material, shift: WLF) -> np.ndarray:
+        parts = [[float(material.E0)], np.asarray(material.moduli, float)]
+        if self.fit_times:
+            parts.append(np.asarray(material.times, float))
+        parts.append([float(shift.C1), float(shift.C2)])
+        return np.log(np.concatenate([np.ravel(p) for p in parts]))
+
+    def unpack(self, x):
+        K = self.K
+        v = jnp.exp(x)
+        tau = v[1 + K:1 + 2 * K] if self.fit_times else jnp.asarray(self.times)
+        mat = Material(v[0], v[1:1 + K], tau, jnp.asarray(self.nu, v.dtype))
+        # built field by field: the WLF constructor's checks are for concrete user input
+        shift = object.__new__(WLF)
+        object.__setattr__(shift, "C1", v[-2])
+        object.__setattr__(shift, "C2", v[-1])
+        object.__setattr__(shift, "T_ref", jnp.asarray(self.T_ref, v.dtype))
+        return mat, shift
+
+    def physical(self, x):
+        """(Material, WLF) with concrete, checked values."""
+        v = np.exp(np.asarray(x, float))
+        K = self.K
+        tau = v[1 + K:1 + 2 * K] if self.fit_times else self.times
+        return Material.prony(v[0], v[1:1 + K], tau, self.nu), WLF(float(v[-2]), float(v[-1]), self.T_ref)
+
+
+# ---- objective -------------------------------------------------------------------------
+def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table, w_dma, s_dma):
+    rpm, T, load = (jnp.asarray(a) for a in (data.rpm, data.T, data.load))
+    meas = jnp.asarray(data.torque)
+    sig = jnp.asarray(data.sigma(rel_scatter))
+    if dma_table is not None and w_dma > 0:
+        from .prony import log_residual
+    else:
+        dma_table = None
+
+    def residuals(x):
+        mat, shift = params.unpack(x)
+        tq, ok = jax.vmap(lambda a, b, c: model(mat, shift, a, b, c))(rpm, T, load)
+        r_t = (tq - meas) / sig
+        if dma_table is not None:
+            r_d = math.sqrt(w_dma) * log_residual(mat, shift, dma_table) / s_dma
+            r = jnp.concatenate([r_t, r_d])
+        else:
+            r = r_t
+        return r, (r_t, tq, ok)
+
+    return residuals
+
+
+def residual_jacobian(params: Params, model, data: TorqueData, rel_scatter=0.05, dma_table=None, w_dma=0.0,
+                      s_dma=0.02):
+    """Compiled ``x -> (J, (r, r_torque, torque_model, converged))``: the stacked weighted
+    residuals r (torque, then sqrt(w_dma) DMA) and their Jacobian J = dr/dx (forward mode)."""
+    res = _residual_fn(params, model, data, rel_scatter, dma_table, w_dma, s_dma)
+
+    def with_aux(x):
+        r, aux = res(x)
+        return r, (r,) + aux
+
+    return jax.jit(jax.jacfwd(with_aux, has_aux=True)), jax.jit(lambda x: res(x)[0])
+
+
+def gauss_newton_cov(J, rcond=1e-8):
+    """Gauss-Newton covariance (J^T J)^-1 of the log-parameters from the Jacobian of
+    noise-scaled residuals, by SVD: directions with s < rcond s_max are dropped, and a
+    parameter with more than 1% of its weight in dropped directions gets sd = inf (it is not
+    determined; a plain pseudo-inverse would report a misleadingly small sd). Returns
+    (cov, sd)."""
+    J = np.asarray(J, float)
+    _, s, Vt = np.linalg.svd(J, full_matrices=False)
+    keep = s > rcond * (s[0] if s.size else 0.0)
+    inv = np.where(keep, 1.0 / np.where(keep, s, 1.0) ** 2, 0.0)
+    cov = (Vt.T * inv) @ Vt
+    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
+    lost = np.sum(Vt[~keep] ** 2, axis=0) if np.any(~keep) else np.zeros(J.shape[1])
+    return cov, np.where(lost > 0.01, np.inf, sd)
+
+
+def identifiability(J_torque, names, threshold=0.1, rcond=1e-10):
+    """Which log-parameters the torque data identify, from the Jacobian of the noise-scaled
+    torque residuals (rows: points, columns: log-parameters).
+
+    Returns a dict: ``singular_values`` (descending), ``sd`` (Gauss-Newton standard deviation
+    of each log-parameter from the torque alone, sqrt diag pinv(J^T J); a relative error),
+    ``identifiable`` (sd < ``threshold``, i.e. determined to better than ~10%),
+    ``identified_directions`` (singular directions with 1/s < threshold, i.e. combinations
+    of parameters the data fix to better than ~10%, with their three largest components)
+    with ``identified_basis`` their unit vectors (rows), and ``weakest`` (the three least
+    determined directions).
+    """
+    J = np.asarray(J_torque, float)
+    U, s, Vt = np.linalg.svd(J, full_matrices=False)
+    cut = rcond * s[0] if s.size else 0.0
+    inv = np.where(s > cut, 1.0 / np.where(s > cut, s, 1.0) ** 2, 0.0)
+    cov = (Vt.T * inv) @ Vt
+    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
+    # a parameter with no projection on the retained directions is not identified at all
+    unresolved = np.sum((Vt[s > cut] ** 2), axis=0) < 0.5
+    sd = np.where(unresolved, np.inf, sd)
+    def describe(i):
+        v = Vt[i]
+        top = np.argsort(-np.abs(v))[:3]
+        return {"singular_value": float(s[i]), "direction": {names[j]: round(float(v[j]), 3) for j in top}}
+
+    # a direction v (unit, in log-parameters) is determined to sd 1/s: identified if 1/s < threshold
+    strong = [describe(i) for i in range(len(s)) if s[i] > 1.0 / threshold]
+    basis = Vt[s > 1.0 / threshold]
+    weak = [describe(i) for i in np.argsort(s)[: min(3, len(s))]]
+    return {"singular_values": s.tolist(), "sd": dict(zip(names, sd.tolist())),
+            "identifiable": [n for n, d in zip(names, sd) if d < threshold],
+            "not_identifiable": [n for n, d in zip(names, sd) if not d < threshold],
+            "identified_directions": strong, "identified_basis": basis.tolist(), "weakest": weak}
+
+
+@dataclasses.dataclass
+class TorqueFit:
+    """Result of :func:`fit_torque`.
+
+    material, shift: refined (checked) material and WLF law. x0, x: log-parameters before
+    and after; names: their names. history: per iteration (iteration, loss, grad norm,
+    seconds). iterations, wall_time (s), compile_time (s). loss0, loss. torque0, torque:
+    model torque at the data points before/after. converged: all scene solves converged at
+    the final point. cov: Gauss-Newton covariance of x (torque + DMA terms). sd: its
+    standard deviations (relative errors of the parameters). ident: :func:`identifiability`
+    of the torque term alone at the final point.
+    """
+
+    material: Material
+    shift: WLF
+    params: Params
+    names: list
+    x0: np.ndarray
+    x: np.ndarray
+    history: list
+    iterations: int
+    wall_time: float
+    compile_time: float
+    loss0: float
+    loss: float
+    torque0: np.ndarray
+    torque: np.ndarray
+    converged: bool
+    cov: np.ndarray
+    sd: np.ndarray
+    ident: dict
+
+    def table(self, truth=None):
+        """Rows (name, before, after, sd_rel, [truth, err_before, err_after]) with values in
+        SI units and relative errors."""
+        v0, v1 = np.exp(self.x0), np.exp(self.x)
+        rows = []
+        for i, n in enumerate(self.names):
+            row = [n, float(v0[i]), float(v1[i]), float(self.sd[i])]
+            if truth is not None:
+                t = float(np.exp(truth[i]))
+                row += [t, float(v0[i] / t - 1.0), float(v1[i] / t - 1.0)]
+            rows.append(row)
+        return rows
+
+
+def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_table=None, w_dma=1.0,
+               s_dma=0.02, rel_scatter=0.05, fit_times=False, steps=100, lr=0.05, lr_end=0.005,
+               gtol=1e-6, progress=True, every=5, log=None) -> TorqueFit:
+    """Refine ``material`` and its WLF ``shift`` against the torque ``data`` (see module docs).
+
+    Args:
+      data: :class:`TorqueData`. material, shift: the start (a Prony material, WLF law).
+      model: ``model(material, shift, rpm, T, load) -> (torque, converged)``, e.g.
+        :func:`roller_model` or :func:`pin_model`.
+      dma_table: optional :class:`fitting.dma.DMATable` for the consistency term, weight
+        ``w_dma``, scatter ``s_dma`` (decades of log10 modulus).
+      rel_scatter: torque scatter relative to the torque when the data have none.
+      fit_times: also refine the relaxation times (the torque rarely identifies them).
+      steps, lr, lr_end: Adam iterations and a cosine-decayed learning rate (log units).
+      gtol: stop when the gradient norm falls below it. progress: print
+        (iteration, loss, gradient norm) every ``every`` iterations to ``log`` (stderr).
+    """
+    import optax
+
+    log = log or sys.stderr
+    params = Params.of(material, shift, fit_times)
+    names = params.names()
+    x0 = params.pack(material, shift)
+    jac_fn, _ = residual_jacobian(params, model, data, rel_scatter, dma_table, w_dma, s_dma)
+    Nt = len(data)
+    t0 = time.perf_counter()
+    J, aux = jac_fn(jnp.asarray(x0))
+    jax.block_until_ready(J)
+    compile_time = time.perf_counter() - t0
+    r, r_t, tq0, ok = aux
+    loss0 = float(jnp.sum(r ** 2) / Nt)
+    sched = optax.cosine_decay_schedule(lr, steps, alpha=lr_end / lr)
+    opt = optax.adam(sched)
+    x = jnp.asarray(x0)
+    state = opt.init(x)
+    history = []
+    t_start = time.perf_counter()
+    it = 0
+    best = (loss0, x, J, aux)
+    for it in range(1, steps + 1):
+        r = aux[0]
+        loss = float(jnp.sum(r ** 2) / Nt)
+        g = 2.0 * (J.T @ r) / Nt
+        gn = float(jnp.linalg.norm(g))
+        history.append((it - 1, loss, gn, time.perf_counter() - t_start))
+        if progress and ((it - 1) % every == 0):
+            print(f"  iter {it - 1:4d}  loss {loss:.6g}  |grad| {gn:.3e}  {time.perf_counter() - t_start:7.1f} s",
+                  file=log, flush=True)
+        if not np.isfinite(loss) or gn < gtol:
+            break
+        upd, state = opt.update(g, state, x)
+        x = optax.apply_updates(x, upd)
+        J, aux = jac_fn(x)
+        new_loss = float(jnp.sum(aux[0] ** 2) / Nt)
+        if np.isfinite(new_loss) and new_loss < best[0]:
+            best = (new_loss, x, J, aux)
+    loss, x, J, aux = best
+    r, r_t, tq, ok = aux
+    history.append((it, loss, float(jnp.linalg.norm(2.0 * (J.T @ r) / Nt)), time.perf_counter() - t_start))
+    if progress:
+        print(f"  best  loss {loss:.6g} (start {loss0:.6g}) after {it} iterations, "
+              f"{time.perf_counter() - t_start:.1f} s", file=log, flush=True)
+    wall = time.perf_counter() - t0
+    Jn = np.asarray(J, float)
+    cov, sd = gauss_newton_cov(Jn)
+    ident = identifiability(Jn[:Nt], names)
+    mat, sh = params.physical(np.asarray(x))
+    return TorqueFit(mat, sh, params, names, np.asarray(x0), np.asarray(x), history, it, wall, compile_time,
+                     loss0, loss, np.asarray(tq0), np.asarray(tq), bool(np.all(np.asarray(ok))), cov, sd, ident)
+
+
+def gradient_check(params: Params, model, data: TorqueData, x, *, rel_scatter=0.05, dma_table=None, w_dma=0.0,
+                   s_dma=0.02, h=1e-4, coords=None, seed=0):
+    """Loss gradient (from the implicit-derivative Jacobian) versus central finite
+    differences of the loss, for a few coordinates and one random direction.
+    Returns rows (what, analytic, finite difference, relative error)."""
+    jac_fn, val_fn = residual_jacobian(params, model, data, rel_scatter, dma_table, w_dma, s_dma)
+    Nt = len(data)
+    x = jnp.asarray(x)
+    J, aux = jac_fn(x)
+    g = 2.0 * (J.T @ aux[0]) / Nt
+    loss = lambda y: float(jnp.sum(val_fn(y) ** 2) / Nt)
+    names = params.names()
+    coords = list(range(len(names))) if coords is None else coords
+    dirs = [(names[i], np.eye(len(names))[i]) for i in coords]
+    v = np.random.default_rng(seed).normal(size=len(names))
+    dirs.append(("random direction", v / np.linalg.norm(v)))
+    rows = []
+    for what, d in dirs:
+        d = jnp.asarray(d)
+        fd = (loss(x + h * d) - loss(x - h * d)) / (2 * h)
+        an = float(g @ d)
+        rows.append((what, an, fd, abs(an - fd) / max(abs(fd), abs(an), 1e-300)))
+    return rows
