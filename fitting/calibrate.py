@@ -21,6 +21,7 @@ import time
 
 import numpy as np
 
+from vjax import _checks
 from vjax.material import Material
 
 from . import dma, io, master, plots, prony
@@ -98,6 +99,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         raise ValueError(f"law must be 'auto', 'WLF', 'Arrhenius' or 'table', got {law!r}")
     if not (isinstance(T_ref, (int, float)) and math.isfinite(T_ref)):
         raise ValueError(f"T_ref must be a finite temperature in C, got {T_ref!r}")
+    _checks.poisson("nu", nu)    # before reading and fitting, not when the material is built
     table = dma.read(paths, kind=kind, drop_nonpositive=drop_nonpositive)
     if shifts is None:
         start = master.shift_factors(table, float(T_ref))

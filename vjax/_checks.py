@@ -57,3 +57,16 @@ def finite(name: str, x) -> None:
 def one_of(name: str, x, options) -> None:
     if x not in options:
         raise ValueError(f"{name} must be one of {sorted(map(str, options))}, got {x!r}")
+
+
+def scalar(name: str, x) -> None:
+    """A concrete ``x`` must be a single number (0-d); traced values pass (vmap batches them)."""
+    a = values(name, x)
+    if a is not None and a.ndim != 0:
+        raise ValueError(f"{name} must be a scalar, got an array of shape {a.shape}")
+
+
+def instance(name: str, x, cls, what: str) -> None:
+    """``x`` must be an instance of ``cls`` (``what`` describes it in the message)."""
+    if not isinstance(x, cls):
+        raise ValueError(f"{name} must be {what}, got {type(x).__name__}")

@@ -41,6 +41,7 @@ import jax.numpy as jnp
 import numpy as np
 from jax.scipy.sparse.linalg import bicgstab, gmres
 
+from . import _checks
 from ._checks import is_concrete
 from .operator import RingOperator
 
@@ -76,6 +77,17 @@ class SolverOptions:
     krylov: int = 60
     krylov_tol: float = 1e-12
     krylov_method: str = "bicgstab"
+
+    def __post_init__(self):
+        for name in ("tol", "krylov_tol"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float, np.floating)) and np.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+        for name in ("max_iter", "krylov"):
+            v = getattr(self, name)
+            if not isinstance(v, (int, np.integer)) or isinstance(v, bool) or v < 1:
+                raise ValueError(f"{name} must be an integer >= 1, got {v!r}")
+        _checks.one_of("krylov_method", self.krylov_method, ("bicgstab", "gmres"))
 
 
 def _transpose(op: RingOperator) -> RingOperator:
@@ -289,6 +301,19 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
     Returns a :class:`ContactSolution`; ``converged = False`` when the residual is above
     ``options.tol`` after ``options.max_iter`` iterations (the scenes raise on it).
     """
+    _checks.instance("op", op, RingOperator, "a vjax.RingOperator (see ring_operator)")
+    _checks.instance("options", options, SolverOptions, "a vjax.SolverOptions")
+    if not callable(interference):
+        raise ValueError(f"interference must be a function interference(q, args) -> (N,), got {interference!r}")
+    if q0 is not None:
+        if not callable(force):
+            raise ValueError(f"load control (q0 given) needs a function force(sigma, u, args), got {force!r}")
+        _checks.finite("q0", q0)
+        _checks.finite("F", F)
+    if sigma_init is not None:
+        _checks.finite("sigma_init", sigma_init)
+        if jnp.shape(sigma_init) != (op.n,):
+            raise ValueError(f"sigma_init must have shape ({op.n},), got {jnp.shape(sigma_init)}")
     if q0 is None:
         dtype = jnp.result_type(op.symbol.real.dtype)
         q0, F, force = jnp.zeros((0,), dtype), jnp.zeros((0,), dtype), _no_force
@@ -298,6 +323,14 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
         if force is None or F.shape != q0.shape:
             raise ValueError(f"load control needs a force function and F of shape {q0.shape}, got "
                              f"force={force!r} and F of shape {F.shape}")
+    # The overlap's shape (abstractly, also under jit) and, when concrete, its values: a
+    # wrong-length or NaN interference would otherwise come back as a silent NaN pressure.
+    d = jax.eval_shape(interference, q0, args)
+    if getattr(d, "shape", None) != (op.n,):
+        raise ValueError(f"interference(q, args) must return shape ({op.n},) (one overlap per element), "
+                         f"got {getattr(d, 'shape', d)}")
+    if _checks.is_concrete((q0, args)):
+        _checks.finite("interference(q0, args)", interference(q0, args))
     if sigma_init is not None:
         sigma_init = jax.lax.stop_gradient(jnp.asarray(sigma_init))
     return _solve(op, interference, force, args, q0, F, options, sigma_init)

@@ -89,6 +89,8 @@ class Material:
         """Elastic solid, Young's modulus ``E`` (Pa)."""
         _checks.positive("E", E)
         _checks.poisson("nu", nu)
+        _checks.scalar("E", E)
+        _checks.scalar("nu", nu)
         empty = jnp.zeros((0,), dtype=jnp.result_type(E, float))
         return cls(jnp.asarray(E, dtype=empty.dtype), empty, empty, jnp.asarray(nu, dtype=empty.dtype))
 
@@ -98,6 +100,8 @@ class Material:
         **relaxation** time ``tau`` (s). Its retardation time is (Einf/E0) tau (Eq. 1.41)."""
         _checks.positive("E0", E0)
         _checks.positive("tau", tau)
+        for name, val in (("E0", E0), ("Einf", Einf), ("tau", tau)):
+            _checks.scalar(name, val)
         e0, einf = _checks.values("E0", E0), _checks.values("Einf", Einf)
         if e0 is not None and einf is not None and not np.all(einf > e0):
             raise ValueError(f"Einf must be > E0 for a standard linear solid, got Einf={Einf!r}, E0={E0!r}")
@@ -113,6 +117,8 @@ class Material:
         _checks.positive("moduli", moduli)
         _checks.positive("times", times)
         _checks.poisson("nu", nu)
+        _checks.scalar("E0", E0)
+        _checks.scalar("nu", nu)
         moduli, times = jnp.atleast_1d(jnp.asarray(moduli)), jnp.atleast_1d(jnp.asarray(times))
         if moduli.ndim != 1 or moduli.shape != times.shape:
             raise ValueError(
@@ -185,6 +191,9 @@ class Material:
     def at_temperature(self, shift, T) -> "Material":
         """The material at temperature ``T`` (C) given a shift law referred to its T_ref:
         E*(omega, T) = E*(a_T(T) omega, T_ref), i.e. tau_k -> a_T(T) tau_k."""
+        if not callable(getattr(shift, "log10_aT", None)):
+            raise ValueError(f"shift must be a shift law with log10_aT (WLF, Arrhenius, a fitted table), "
+                             f"got {type(shift).__name__}")
         aT = 10.0 ** shift.log10_aT(T)
         return dataclasses.replace(self, times=self.times * aT)
 

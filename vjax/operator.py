@@ -140,9 +140,12 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     green._check_kind(kind)
     if not isinstance(n, (int, np.integer)) or n < 4:
         raise ValueError(f"n (number of elements) must be an integer >= 4, got {n!r}")
+    _checks.instance("material", material, Material, "a vjax.Material")
     _checks.positive("R", R)
     _checks.positive("ref_length", ref_length)
     _checks.finite("omega", omega)
+    for name, val in (("R", R), ("ref_length", ref_length), ("omega", omega)):
+        _checks.scalar(name, val)
     memory_revolutions(memory)
     return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length), int(n))
 

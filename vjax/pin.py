@@ -105,11 +105,15 @@ def pin_in_hole(material: Material, R, R_pin, load, omega=0.0, *, memory="period
     >>> bool(r.converged), round(float(r.force[0]) / 2800.0, 12)
     (True, 1.0)
     """
+    _checks.instance("material", material, Material, "a vjax.Material")
+    _checks.instance("options", options, SolverOptions, "a vjax.SolverOptions")
     _checks.positive("R", R)
     _checks.positive("R_pin", R_pin)
     _checks.positive("load", load)
     _checks.finite("omega", omega)
     _checks.positive("ref_length", ref_length)
+    for name, val in (("R", R), ("R_pin", R_pin), ("load", load), ("omega", omega), ("ref_length", ref_length)):
+        _checks.scalar(name, val)
     r_, rp = _checks.values("R", R), _checks.values("R_pin", R_pin)
     if r_ is not None and rp is not None and not rp < r_:
         raise ValueError(f"R_pin must be smaller than the hole radius R, got R_pin={R_pin!r} >= R={R!r}")
