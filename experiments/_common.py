@@ -84,7 +84,7 @@ def save_figure(fig, path, dpi: int = 150, close: bool = True) -> Path:
 def _cell(x):
     """CSV cell: floats as their shortest exact repr (round-trips), everything else as is."""
     if isinstance(x, float):
-        return repr(x)
+        return repr(float(x))  # np.float64 is a float whose repr is "np.float64(...)"
     if hasattr(x, "item") and getattr(x, "ndim", None) == 0:  # numpy / jax scalar
         return _cell(x.item())
     return x

@@ -91,8 +91,12 @@ def pin_in_hole(material: Material, R, R_pin, load, omega=0.0, *, memory="period
       load: force on the pin along +x (N/m), > 0. omega: patch angular velocity (rad/s)
         relative to the plane (thesis omega~ = omega tau); see :func:`pin_patch_speed`.
       memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.operator`).
-      n: elements on the hole (static). ref_length: log-R reference length (m); it sets
-        the absolute pin offset (mode 1) and nothing else.
+      n: elements on the hole (static). ref_length: log-R reference length (m). It sets
+        the absolute pin offset (the plane's rigid-body mode 1) and, through the exact
+        circle geometry (e^2 sin^2/(2 R_pin)) and the slope terms of Eq. 2.21, changes the
+        pressure at second order in e/R: 1.9% of the peak in the Persson case (dR = 4e-5 m,
+        F~ = 2.3e-2) between 1 m and the small-displacement choice e = dR
+        (experiments/persson.py, ``small_displacement_pin``).
       throw: raise :class:`~vjax.ConvergenceError` when the solver fails (inside jit too);
         with False, inspect ``converged``.
       options: contact solver options (static).
