@@ -1,0 +1,257 @@
+"""Writes the three example notebooks (nbformat 4, no outputs) from the cell sources below.
+
+Run ``python notebooks/_make.py`` after editing; the notebooks are generated, not edited by
+hand. Each notebook reads ``VJAX_NOTEBOOK_QUICK=1`` (tiny grids, used by
+tests/test_notebooks.py) and ``VJAX_NOTEBOOK_OUT`` (where files go, default ``nb_out``).
+"""
+import json
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+SETUP = '''import os, sys
+# run from the notebooks/ folder or the repository root without installing vjax
+for _p in (os.path.abspath(".."), os.path.abspath(".")):
+    if os.path.isdir(os.path.join(_p, "vjax")) and _p not in sys.path:
+        sys.path.insert(0, _p)
+import jax
+jax.config.update("jax_enable_x64", True)   # before any JAX computation
+import jax.numpy as jnp
+import numpy as np
+import matplotlib
+if os.environ.get("VJAX_NOTEBOOK_QUICK") == "1":
+    matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import vjax
+QUICK = os.environ.get("VJAX_NOTEBOOK_QUICK") == "1"   # tiny grids (the test suite sets it)
+OUT = os.environ.get("VJAX_NOTEBOOK_OUT", "nb_out")
+os.makedirs(OUT, exist_ok=True)
+print("QUICK =", QUICK, "| output folder:", OUT, "| devices:", jax.devices())'''
+
+NB1 = [
+    ("md", "# 1. Calibrate a viscoelastic material from DMA data\n\n"
+           "Read a DMA file (storage and loss modulus at several temperatures and frequencies), "
+           "build the master curve, fit a Prony series and a shift law, and save the material as "
+           "JSON for the bearing scenes. Data: the pyvisco example shipped with `fitting` "
+           "(tensile, 21 temperatures from -50 to 100 C, BSD-3)."),
+    ("code", SETUP),
+    ("code", '''import fitting
+from fitting import dma, master, prony
+path = dma.default_data("pyvisco")
+table = dma.read(path)
+print(table.summary())'''),
+    ("md", "## Master curve and shift law\n\n`fitting.calibrate` chains: shift factors from the "
+           "overlap of neighbouring sweeps, a Prony fit (number of terms by BIC), an end-to-end "
+           "refinement on the raw data and a shift law. In quick mode we keep the operating range "
+           "10-100 C and fewer refinement iterations."),
+    ("code", '''if QUICK:
+    sub = table.subset((table.T >= 10) & (table.T <= 100))
+else:
+    sub = table
+T_ref = 25.0
+shifts = master.shift_factors(sub, T_ref)           # log10 a_T per sweep from the data overlap
+wlf, rms = master.fit_law(shifts, "WLF")
+print(f"WLF: C1 = {float(wlf.C1):.3g}, C2 = {float(wlf.C2):.3g} C (rms {rms:.3f} decades)")
+wr = sub.omega * 10.0 ** np.asarray(wlf.log10_aT(sub.T))   # reduced frequency at T_ref
+E0, Ek, tau = prony.fit_master(wr, sub.storage, sub.loss, density=0.5 if QUICK else 1.0)
+start = vjax.Material.prony(E0, Ek, tau, 0.5)
+fit = prony.refine(sub, start, wlf, max_iter=30 if QUICK else 300)
+material, shift = fit.material, fit.shift
+print(f"{fit.terms} Prony terms, rms log10 error {fit.rms:.4f}, shift {shift}")
+print(prony.raw_errors(material, shift, sub))'''),
+    ("code", '''fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+w = np.logspace(np.log10(wr.min()) - 1, np.log10(wr.max()) + 1, 300)
+E = np.asarray(material.modulus(w))
+ax[0].loglog(wr, sub.storage, ".", ms=3, label="data (shifted)")
+ax[0].loglog(w, E.real, "k-", label="Prony fit")
+ax[1].loglog(wr, sub.loss, ".", ms=3)
+ax[1].loglog(w, E.imag, "k-")
+for a, lab in zip(ax, ("E' (Pa)", "E'' (Pa)")):
+    a.set_xlabel(f"reduced frequency at {T_ref:g} C (rad/s)"); a.set_ylabel(lab)
+ax[0].legend()
+fig.savefig(os.path.join(OUT, "01_master_curve.png"), dpi=100)'''),
+    ("md", "## One call, with plots and JSON\n\n`fitting.calibrate(paths, T_ref, out_dir)` does all of "
+           "the above (and picks the shift law by BIC). It takes a few tens of seconds; quick mode "
+           "skips it and saves the material fitted above instead."),
+    ("code", '''json_path = os.path.join(OUT, "material.json")
+if QUICK:
+    fitting.save_material(json_path, material, shift)
+else:
+    material, shift, report = fitting.calibrate(path, T_ref, out_dir=OUT)
+    print(report.table())
+mat2, shift2, kind = fitting.load_material(json_path)
+print("reloaded:", kind, "E0 =", float(mat2.E0), "Pa,", mat2.moduli.shape[0], "terms,", type(shift2).__name__)'''),
+    ("md", "## Use it in a scene\n\nThe material at 60 C is `material.at_temperature(shift, 60.0)`. "
+           "Friction torque of a polymer pin joint (rigid pin in a plate of this material) versus "
+           "shaft speed, vmapped over speeds:"),
+    ("code", '''R, R_pin = 0.01, 0.0099
+load = 1e-2 * float(mat2.E0) * R
+rpm = np.geomspace(10, 3000, 5 if QUICK else 20)
+def torque(rpm_, T):
+    m = mat2.at_temperature(shift2, T)
+    w = vjax.pin_patch_speed(rpm_ * 2 * np.pi / 60, R, R_pin)
+    return vjax.pin_in_hole(m, R, R_pin, load, omega=w, n=64 if QUICK else 256, throw=False).torque
+fig, ax = plt.subplots()
+for T in (40.0, 70.0):
+    tq = jax.jit(jax.vmap(lambda s: torque(s, T)))(jnp.asarray(rpm))
+    ax.loglog(rpm, np.asarray(tq), "o-", label=f"{T:g} C")
+ax.set_xlabel("shaft speed (rpm)"); ax.set_ylabel("friction torque (N m/m)"); ax.legend()
+fig.savefig(os.path.join(OUT, "01_pin_torque.png"), dpi=100)'''),
+]
+
+NB2 = [
+    ("md", "# 2. Explore and optimize a needle roller bearing\n\n"
+           "The thesis bearing (Section 2.3): outer ring R_O = 6 mm, inner ring R_I = 4 mm, 9 rigid "
+           "rollers of 2 mm, both rings of a standard linear solid (E0 = 1 MPa, Einf = 10 MPa, "
+           "tau = 0.01 s, nu = 0.5), load F~ = F/(E0 R_O) = 6.5e-3, outer ring fixed."),
+    ("code", SETUP),
+    ("code", '''m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)
+R_O, R_I, D, Z = 6e-3, 4e-3, 2e-3, 9
+load = 6.5e-3 * 1e6 * R_O
+n = 64 if QUICK else 256
+r = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_inner=10.0, n=n)
+print("converged:", bool(r.converged), "Newton iterations:", int(r.iterations))
+print("roller loads (N/m):", np.round(np.asarray(r.roller_loads[0]), 2))
+print("friction torque on the outer ring (N m/m):", float(r.torque[0]))'''),
+    ("code", '''fig, ax = plt.subplots(subplot_kw={"projection": "polar"})
+ax.plot(np.asarray(r.theta[0]), np.asarray(r.pressure[0]) / 1e6, label="outer ring")
+ax.plot(np.asarray(r.theta[1]), np.asarray(r.pressure[1]) / 1e6, label="inner ring")
+ax.set_title("contact pressure (MPa)"); ax.legend(loc="lower left")
+fig.savefig(os.path.join(OUT, "02_pressure.png"), dpi=100)'''),
+    ("md", "## Speed sweep with continuation\n\nEach speed starts from the previous solution "
+           "(`initial=`), which is faster and stays on the same branch. The thesis speed is "
+           "omega~ = |omega_c - omega_O| tau."),
+    ("code", '''speeds = np.geomspace(1.0, 300.0, 3 if QUICK else 12)     # shaft speed, rad/s
+torques, prev = [], None
+for w in speeds:
+    prev = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_inner=float(w), n=n, initial=prev)
+    torques.append(float(prev.torque[0]))
+fig, ax = plt.subplots()
+wt = np.abs(np.asarray([vjax.roller_patch_speeds(w, 0.0, R_I, R_O)[1] for w in speeds])) * 0.01
+ax.semilogx(wt, torques, "o-")
+ax.set_xlabel("omega~ = |omega_c| tau"); ax.set_ylabel("friction torque (N m/m)")
+fig.savefig(os.path.join(OUT, "02_torque_speed.png"), dpi=100)'''),
+    ("md", "**Check before trusting a torque:** in the elastic limit (omega -> 0) the friction torque "
+           "must vanish. Compare the first point of the sweep with the torques at higher speed and "
+           "refine `n` until it is small; on coarse grids the torque of this scene is dominated by "
+           "discretization (the roller patches are a few elements wide)."),
+    ("md", "## Gradients with respect to design parameters\n\nThe bearing is differentiable "
+           "(implicit differentiation at the converged solution). The design objective below is the "
+           "friction torque plus a quadratic penalty when the peak contact pressure exceeds a bound; "
+           "one compiled function gives it, the torque, the peak pressure and the gradient with "
+           "respect to the diametral clearance (negative = preload) and the shaft speed."),
+    ("code", '''p_max = 1.2 * float(jnp.max(r.pressure))              # allowed peak pressure (Pa)
+scale = abs(float(r.torque[0]))
+def objective(clearance, omega):
+    res = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, clearance=clearance, omega_inner=omega, n=n,
+                              throw=False)
+    tq, peak = jnp.abs(res.torque[0]), jnp.max(res.pressure)
+    return tq + 10.0 * scale * jnp.maximum(peak / p_max - 1.0, 0.0) ** 2, (tq, peak)
+grad_fn = jax.jit(jax.value_and_grad(objective, argnums=(0, 1), has_aux=True))
+(f0, (tq0, pk0)), (df_dc, df_dw) = grad_fn(0.0, 30.0)
+print(f"torque {float(tq0):.4g} N m/m, peak pressure {float(pk0) / 1e6:.3f} MPa")
+print(f"d objective/d clearance = {float(df_dc):.4g} (N m/m)/m, d objective/d omega = {float(df_dw):.4g}")
+h = 1e-7
+fd = (objective(h, 30.0)[0] - objective(-h, 30.0)[0]) / (2 * h)
+print(f"finite difference d/d clearance: {float(fd):.4g}")'''),
+    ("md", "## A small design optimization\n\nMinimize the penalized torque over the clearance "
+           "(preload allowed down to -20 um) by sign-gradient steps with a shrinking step (scale-free); "
+           "each step is one solve plus its implicit gradient."),
+    ("code", '''c, step = 0.0, 4e-6
+for k in range(2 if QUICK else 12):
+    (f, (tq, pk)), (g, _) = grad_fn(c, 30.0)
+    print(f"step {k}: clearance {c * 1e6:7.2f} um, torque {float(tq):.5g}, peak {float(pk) / 1e6:.3f} MPa")
+    c = float(np.clip(c - step * np.sign(g), -20e-6, 20e-6))
+    step *= 0.7
+(f, (tq, pk)), _ = grad_fn(c, 30.0)
+print(f"final: clearance {c * 1e6:.2f} um, torque {float(tq):.5g} N m/m, peak pressure "
+      f"{float(pk) / 1e6:.3f} MPa (bound {p_max / 1e6:.3f})")'''),
+]
+
+NB3 = [
+    ("md", "# 3. Journal bearing with a viscoelastic liner (VEHL)\n\n"
+           "Thesis Chapter 3: bore R_B = 0.1 m, clearance c = 0.5 mm, eta = 1e-3 Pa s, soft bearing "
+           "liner (SLS, Einf = 100 MPa, Einf/E0 = 100, tau = 1 s, nu = 0.5), rigid journal (HS), "
+           "F~ = |F|/(E0 R_B) = 2.2e-3, omega~_B = 0.2, omega~_J = -0.4."),
+    ("code", SETUP),
+    ("code", '''bearing = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
+R_B, c, eta = 0.1, 5e-4, 1e-3
+load = 2.2e-3 * 1e6 * R_B
+n = 64 if QUICK else 256
+sol = vjax.journal_bearing(R_B, c, eta, omega_journal=-0.4, omega_bearing=0.2, load=load, bearing=bearing, n=n)
+print("converged:", bool(sol.converged), "| eps =", float(sol.eccentricity),
+      "| effective eps =", float(sol.eccentricity_effective))
+print("min film (um):", 1e6 * float(sol.min_film), "| bearing torque (N m/m):", float(sol.torque_bearing),
+      "| viscoelastic part:", float(sol.torque_viscoelastic))'''),
+    ("code", '''th = np.asarray(sol.theta)
+fig, ax = plt.subplots(1, 2, figsize=(11, 4))
+ax[0].plot(th, np.asarray(sol.pressure) / 1e3); ax[0].set_ylabel("pressure (kPa)")
+ax[1].plot(th, 1e6 * np.asarray(sol.film)); ax[1].set_ylabel("film h (um)")
+for a in ax:
+    a.set_xlabel("theta (rad, line-of-centres frame)")
+fig.savefig(os.path.join(OUT, "03_profiles.png"), dpi=100)'''),
+    ("md", "## Speed sweep (warm-started)\n\nThe journal speed changes with the bearing speed fixed; "
+           "each solve starts from the previous one."),
+    ("code", '''wj = -np.geomspace(0.4, 1.6, 3 if QUICK else 10)
+rows, prev = [], sol
+for w in wj:
+    s = vjax.journal_bearing(R_B, c, eta, omega_journal=float(w), omega_bearing=0.2, load=load,
+                             bearing=bearing, n=n, initial=prev, throw=False)
+    print(f"omega_J = {w:.3f}: converged {bool(s.converged)}")
+    if bool(s.converged):
+        prev = s
+        rows.append((float(w), float(s.min_film), float(s.torque_bearing), float(s.torque_viscoelastic)))
+rows = np.array(rows)
+fig, ax = plt.subplots()
+ax.plot(-rows[:, 0], rows[:, 2], "o-", label="bearing torque")
+ax.plot(-rows[:, 0], rows[:, 3], "s--", label="viscoelastic part")
+ax.set_xlabel("-omega_J (rad/s)"); ax.set_ylabel("torque (N m/m)"); ax.legend()
+fig.savefig(os.path.join(OUT, "03_sweep.png"), dpi=100)
+print(rows)'''),
+    ("md", "## Design gradients: clearance and viscosity\n\nPower loss and minimum film as functions "
+           "of the clearance and the viscosity, with their gradients (implicit differentiation "
+           "through the coupled Reynolds-elasticity Newton solve)."),
+    ("code", '''def loss_and_film(log_c, log_eta):
+    s = vjax.journal_bearing(R_B, jnp.exp(log_c), jnp.exp(log_eta), omega_journal=-0.4, omega_bearing=0.2,
+                             load=load, bearing=bearing, n=n, throw=False, solver="newton", initial=sol)
+    power = s.dissipation_fluid + s.dissipation_bearing
+    return power, s.min_film
+x = (jnp.log(c), jnp.log(eta))
+(power, film) = loss_and_film(*x)
+jac = jax.jacfwd(lambda a, b: jnp.stack(loss_and_film(a, b)), argnums=(0, 1))(*x)
+print(f"power loss {float(power):.4g} W/m, min film {1e6 * float(film):.3f} um")
+print("d(power, film)/d log c  :", np.asarray(jac[0]))
+print("d(power, film)/d log eta:", np.asarray(jac[1]))
+h = 1e-5
+fd = (np.asarray(loss_and_film(x[0] + h, x[1])) - np.asarray(loss_and_film(x[0] - h, x[1]))) / (2 * h)
+print("finite differences d/d log c:", fd)'''),
+]
+
+
+def notebook(cells):
+    out = []
+    for kind, src in cells:
+        lines = src.splitlines(keepends=True)
+        if kind == "md":
+            out.append({"cell_type": "markdown", "metadata": {}, "source": lines})
+        else:
+            out.append({"cell_type": "code", "metadata": {}, "execution_count": None, "outputs": [],
+                        "source": lines})
+    return {"cells": out, "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python",
+                                                      "name": "python3"},
+                                       "language_info": {"name": "python"}},
+            "nbformat": 4, "nbformat_minor": 5}
+
+
+def main():
+    for name, cells in (("01_calibrate_material.ipynb", NB1), ("02_roller_bearing.ipynb", NB2),
+                        ("03_journal_bearing.ipynb", NB3)):
+        nb = notebook(cells)
+        for i, c in enumerate(nb["cells"]):
+            c["id"] = f"cell-{i}"
+        (HERE / name).write_text(json.dumps(nb, indent=1) + "\n")
+        print("wrote", HERE / name)
+
+
+if __name__ == "__main__":
+    main()
