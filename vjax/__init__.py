@@ -26,7 +26,9 @@ from .sweep import sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "green", "ConvergenceError", "ContactSolution",
-           "SolverOptions", "solve_contact", "PinResult", "pin_in_hole", "pin_patch_speed"]
+           "SolverOptions", "solve_contact", "PinResult", "pin_in_hole", "pin_patch_speed",
+           "JournalSolution", "journal_bearing", "RollerResult", "roller_bearing", "roller_patch_speeds",
+           "sweep"]
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(
