@@ -97,7 +97,7 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
              f"{os.cpu_count()} CPU(s), jax {jax.__version__}"]
     fns = make(n)
     rows = []
-    variants = [("scan", 3), ("loop", 2)] + ([("vmap", 1)] if vmap else [])
+    variants = [("scan", 2), ("loop", 1)] + ([("vmap", 1)] if vmap else [])
     for name, rep in variants:
         first, med, res = _time(fns[name], ws, rep)
         if name == "loop":
@@ -112,7 +112,8 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
                      f"{med:6.2f} s over {rep} run(s) = {1e3 * med / nw:6.1f} ms/speed; converged {conv}; "
                      f"Newton iterations {min(its)}-{max(its)} (mean {np.mean(its):.2f})")
         rows.append([name, n, nw, compile_s, first, med, 1e3 * med / nw, conv])
-    lines.append("  target: under 10 s warm for the sweep")
+        print(lines[-1], flush=True)
+    lines.append(f"  target: under 10 s warm for the sweep; load average during the run {os.getloadavg()[0]:.1f}")
 
     # discretization error against a 4x finer grid
     ref_n = 4 * n
@@ -133,6 +134,7 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
             e_l.append(el), e_s.append(es), e_t.append(et)
             err_rows.append([m, ref_n, wt, el, es, et])
         errs[m] = (max(e_l), max(e_s), max(e_t))
+        print(f"  n = {m}: done", flush=True)
         lines.append(f"  n = {m:5d} vs {ref_n}: max over {len(ERR_SPEEDS)} speeds: loads {max(e_l):.2e}, ring shift "
                      f"{max(e_s):.2e}, torque/peak {max(e_t):.2e}")
     for k, name in enumerate(("loads", "ring shift", "torque")):
