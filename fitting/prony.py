@@ -270,6 +270,9 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     sigma.update(sig(x[2 * K + 1:], cov[2 * K + 1:, 2 * K + 1:]))
     # terms whose modulus underflowed carry no information: drop them (moduli must be > 0)
     keep = Ek[order] > 1e-12 * (E0 + Ek.sum())
+    # a relaxation time that underflowed to 0 (log tau driven out of the data range) is an
+    # arm that never relaxes into the data: E_k i w tau/(1 + i w tau) -> 0, drop it too
+    keep &= tau[order] > 0
     sigma["moduli"] = [v for v, k in zip(sigma["moduli"], keep) if k]
     sigma["times"] = [v for v, k in zip(sigma["times"], keep) if k]
     E0 = max(E0, 1e-12 * float(Ek.sum()))
