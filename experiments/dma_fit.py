@@ -111,16 +111,19 @@ def main(out_dir="experiments/out", quick=False):
             print(f"[{name}] pyvisco not installed: comparison skipped")
     cols = ["dataset", "tool", "terms", "storage_median", "storage_p90", "loss_median", "loss_p90", "wall_time",
             "T_ref", "law", "E_rubbery_MPa"]
-    with open(os.path.join(out_dir, "dma_fit.csv"), "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=cols)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: r.get(k) for k in cols})
-    with open(os.path.join(out_dir, "dma_fit.md"), "w") as fh:
-        fh.write("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols) + "\n")
-        for r in rows:
-            fh.write("| " + " | ".join(f"{r.get(k):.4g}" if isinstance(r.get(k), float) else str(r.get(k))
-                                       for k in cols) + " |\n")
+    # written atomically (temporary file + os.replace): a crash never leaves half a report
+    from experiments import _common
+    fh = _io.StringIO()
+    w = csv.DictWriter(fh, fieldnames=cols, lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow({k: r.get(k) for k in cols})
+    _common.atomic_write_text(os.path.join(out_dir, "dma_fit.csv"), fh.getvalue())
+    md = "| " + " | ".join(cols) + " |\n|" + "---|" * len(cols) + "\n"
+    for r in rows:
+        md += "| " + " | ".join(f"{r.get(k):.4g}" if isinstance(r.get(k), float) else str(r.get(k))
+                                for k in cols) + " |\n"
+    _common.atomic_write_text(os.path.join(out_dir, "dma_fit.md"), md)
     print(open(os.path.join(out_dir, "dma_fit.md")).read())
     return rows
 
