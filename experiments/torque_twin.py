@@ -62,9 +62,10 @@ def twin_material(quick: bool = False):
 
 def _scene(name, quick):
     from fitting import torque as ft
+    # (model, length scale of F~, patch speed per shaft speed)
     if name == "roller":
-        return ft.roller_model(n=128 if quick else 256), 6e-3
-    return ft.pin_model(n=64 if quick else 128), 0.01
+        return ft.roller_model(n=128 if quick else 256), 6e-3, 4e-3 / (4e-3 + 6e-3)
+    return ft.pin_model(n=64 if quick else 128), 0.01, 0.0099 / (0.01 - 0.0099)
 
 
 def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", steps=None) -> dict:
@@ -83,7 +84,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
           f"C2 = {float(true_shift.C2):.4g} C, T_ref = {T_REF} C", flush=True)
     fio.save_material(out / "torque_twin_truth.json", true_mat, true_shift)
 
-    model, R_scale = _scene(scene, quick)
+    model, R_scale, patch = _scene(scene, quick)
     E0 = float(true_mat.E0)
     F1 = (4e-3 if scene == "roller" else 1e-2) * E0 * R_scale      # F~ = F/(E0 R)
     speeds = np.geomspace(100.0, 3000.0, 4 if quick else 6)
@@ -207,11 +208,11 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
         E = np.asarray(mat.modulus(jnp.asarray(w)))
         axes[0].loglog(w, E.real, style, label=lab)
         axes[1].loglog(w, E.imag, style, label=lab)
-    # reduced frequencies that the torque data probe (patch speed x mode 1..10, shifted)
+    # reduced frequencies that the torque data probe (patch speed x modes 1..10, shifted to 25 C)
     for ax in axes:
         for Tc in (40.0, 70.0):
             aT = 10 ** float(true_shift.log10_aT(Tc))
-            ax.axvspan(aT * speeds.min() * 2 * np.pi / 60 * 0.4, aT * speeds.max() * 2 * np.pi / 60 * 0.4 * 30,
+            ax.axvspan(aT * speeds.min() * 2 * np.pi / 60 * patch, aT * speeds.max() * 2 * np.pi / 60 * patch * 10,
                        color="0.9", zorder=0)
         ax.set_xlabel("reduced angular frequency at 25 C (rad/s)")
     axes[0].set_ylabel("E' (Pa)")
