@@ -137,6 +137,14 @@ def _memory(compiled):
     return d
 
 
+def _shard_map(f, mesh, in_specs, out_specs):
+    """jax.shard_map (JAX >= 0.6) or jax.experimental.shard_map (older JAX), unchecked."""
+    if hasattr(jax, "shard_map"):
+        return jax.shard_map(f, mesh=mesh, in_specs=in_specs, out_specs=out_specs, check_vma=False)
+    from jax.experimental.shard_map import shard_map
+    return shard_map(f, mesh=mesh, in_specs=in_specs, out_specs=out_specs, check_rep=False)
+
+
 def _to_host(x):
     if jax.process_count() > 1:
         from jax.experimental import multihost_utils
@@ -185,8 +193,7 @@ def sweep(fn, params, *, chunk_size: int | None = None, devices=None, progress: 
     # every output leaf is split along its batch axis like the inputs
     if partition == "shard_map":
         spec = PartitionSpec("batch")
-        f = jax.jit(jax.shard_map(jax.vmap(fn), mesh=mesh, in_specs=(spec,), out_specs=spec, check_vma=False),
-                    in_shardings=(sharding,), out_shardings=sharding)
+        f = jax.jit(_shard_map(jax.vmap(fn), mesh, (spec,), spec), in_shardings=(sharding,), out_shardings=sharding)
     elif partition == "auto":
         f = jax.jit(jax.vmap(fn), in_shardings=(sharding,), out_shardings=sharding)
     else:
