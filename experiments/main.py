@@ -39,9 +39,11 @@ def calibration_stage(out_dir, quick=False):
     from fitting import calibrate, dma
     material, shift, report = calibrate(dma.default_data("pyvisco"), 25.0, out_dir, stem="material",
                                         max_iter=60 if quick else 300)
-    return (f"material written to {Path(out_dir) / 'material.json'}\n"
+    text = (f"material written to {Path(out_dir) / 'material.json'}\n"
             f"E0 = {float(material.E0):.4g} Pa, Einf = {float(material.Einf):.4g} Pa, "
             f"{material.times.shape[0]} Prony terms\n{report.table()}")
+    print(text)
+    return text
 
 
 def main(argv=None) -> int:
@@ -62,7 +64,7 @@ def main(argv=None) -> int:
         text = getattr(importlib.import_module(module), func)(str(out / name), quick=args.quick)
         dt = time.perf_counter() - t0
         text = text if isinstance(text, str) else "(see the CSV files)"
-        print(text, f"\n[{name}: {dt:.1f} s]", flush=True)
+        print(f"[{name}: {dt:.1f} s]", flush=True)   # each stage prints its own text
         sections.append(f"## {name} ({dt:.1f} s)\n\n```\n{text}\n```\n")
     summary = (f"# vjax main job ({'quick' if args.quick else 'full'} run, "
                f"{time.perf_counter() - t_start:.0f} s)\n\n" + "\n".join(sections))
