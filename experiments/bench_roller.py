@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.bench_roller [out_dir] [--quick] [--no-vmap]
+    PYTHONPATH=. python -m experiments.bench_roller [out_dir] [--quick] [--no-vmap] [--errors-only]
 
 Thesis case (R_O = 6 mm, R_I = 4 mm, D = 2 mm, Z = 9, zero clearance, SLS E0 = 1 MPa,
 Einf = 10 MPa, tau = 0.01 s, nu = 0.5, F~ = 6.5e-3, periodic memory), omega~ = omega_c tau
@@ -15,7 +15,7 @@ from 1e-4 to 1e4 (60 speeds), n elements per ring. Three ways to run the sweep:
   loops run in lock step until the slowest speed has converged).
 
 Reported: compile time (first call: tracing + XLA compilation + one run) and the median
-of warm runs of the whole sweep. Then the discretization error: at six speeds, n = 1024,
+of warm runs of the whole sweep. Then the discretization error: at five speeds, n = 1024,
 2048 and 4096 against a 4x finer grid (n = 16384): roller loads (max error / max load),
 ring shift (relative) and outer-ring torque (relative to the sweep's peak torque), with
 the observed order. Outputs ``bench_roller.csv`` and ``bench_roller.txt``.
@@ -41,7 +41,9 @@ RO, RI, D, Z = 6e-3, 4e-3, 2e-3, 9
 SLS = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)
 LOAD = 6.5e-3 * 1e6 * RO
 TAU = 0.01
-ERR_SPEEDS = (1e-4, 3e-3, 0.1, 1.4, 100.0, 1e4)
+# omega~ = 1e-4 is left out: from a cold start at n = 16384 Newton stalls there (merit 1.5
+# after its line search gives up, 200 s); at 4096 and below it converges
+ERR_SPEEDS = (3e-3, 0.1, 1.4, 100.0, 1e4)
 
 
 def shaft(w_tilde):
@@ -49,7 +51,8 @@ def shaft(w_tilde):
 
 
 def _solve(n, w, initial=None):
-    return vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, omega_inner=w, n=n, throw=False, initial=initial)
+    return vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, omega_inner=w, n=n, throw=False, initial=initial,
+                               max_iter=15)
 
 
 def _summary(r):
@@ -88,7 +91,7 @@ def _time(fn, arg, repeats):
     return first, (statistics.median(samples) if samples else float("nan")), out
 
 
-def main(out_dir="experiments/out", quick=False, vmap=True):
+def main(out_dir="experiments/out", quick=False, vmap=True, timings=True):
     out = _common.setup(out_dir)
     n = 1024 if quick else 4096
     nw = 20 if quick else 60
@@ -97,7 +100,7 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
              f"{os.cpu_count()} CPU(s), jax {jax.__version__}"]
     fns = make(n)
     rows = []
-    variants = [("scan", 2), ("loop", 1)] + ([("vmap", 1)] if vmap else [])
+    variants = ([("scan", 2), ("loop", 1)] + ([("vmap", 1)] if vmap else [])) if timings else []
     for name, rep in variants:
         first, med, res = _time(fns[name], ws, rep)
         if name == "loop":
@@ -132,6 +135,8 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
             es = abs(float(r["shift"]) / float(r_ref["shift"]) - 1)
             et = abs(float(r["torque"]) - float(r_ref["torque"])) / peak_T
             e_l.append(el), e_s.append(es), e_t.append(et)
+            if not (bool(r["converged"]) and bool(r_ref["converged"])):
+                lines.append(f"  NOT CONVERGED: n = {m} or {ref_n} at omega~ = {wt:g}")
             err_rows.append([m, ref_n, wt, el, es, et])
         errs[m] = (max(e_l), max(e_s), max(e_t))
         print(f"  n = {m}: done", flush=True)
@@ -144,9 +149,10 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
             lines.append(f"  observed order ({name}): {order:.2f}")
     text = "\n".join(lines)
     print(text)
-    _common.write_csv(out / "bench_roller.csv", ["variant", "n", "speeds", "compile_s", "first_call_s", "median_s",
+    if rows:
+        _common.write_csv(out / "bench_roller.csv", ["variant", "n", "speeds", "compile_s", "first_call_s", "median_s",
                                                  "ms_per_speed", "converged"], rows,
-                      comments=["thesis roller bearing sweep; times in s"])
+                          comments=["thesis roller bearing sweep; times in s"])
     _common.write_csv(out / "bench_roller_error.csv", ["n", "n_ref", "omega_tilde", "err_loads", "err_ring_shift",
                                                        "err_torque_over_peak"],
                       [[a, b, float(c), float(d), float(e), float(f)] for a, b, c, d, e, f in err_rows],
@@ -157,4 +163,5 @@ def main(out_dir="experiments/out", quick=False, vmap=True):
 
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv, vmap="--no-vmap" not in sys.argv)
+    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv, vmap="--no-vmap" not in sys.argv,
+         timings="--errors-only" not in sys.argv)
