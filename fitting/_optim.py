@@ -67,20 +67,25 @@ class LMSolution:
 
 
 def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: float = 1e-10,
-                        ftol: float = 1e-12) -> LMSolution:
+                        ftol: float = 1e-12, active=None, resid_jac: Callable | None = None) -> LMSolution:
     """Minimize 0.5 ||fun(x, *args)||^2 by Levenberg-Marquardt with Marquardt scaling.
 
     ``fun`` maps a 1-D parameter vector to a 1-D residual; its Jacobian comes from
     ``jax.jacfwd`` (few parameters, many residuals). Never raises: ``converged`` tells
     whether the relative cost decrease or step fell below ``ftol``/``xtol`` before
-    ``max_iter`` iterations. Jit-compatible (``max_iter`` static).
+    ``max_iter`` iterations. Jit-compatible (``max_iter`` static). ``active`` (optional 0/1
+    vector like ``x0``): parameters with 0 are frozen (padding of a fixed-size vector).
+    ``resid_jac`` (optional): ``x -> (residual, Jacobian)`` replacing ``fun`` and ``jacfwd``.
     """
     x0 = jnp.asarray(x0)
-    jac = jax.jacfwd(lambda x: fun(x, *args))
+    act = jnp.ones_like(x0) if active is None else jnp.asarray(active, x0.dtype)
+    if resid_jac is None:
+        jac = jax.jacfwd(lambda x: fun(x, *args))
+        resid_jac = lambda x: (fun(x, *args), jac(x))  # noqa: E731
 
     def lin(x):
-        r = fun(x, *args)
-        return r, jac(x), 0.5 * jnp.sum(r * r)
+        r, J = resid_jac(x)
+        return r, J, 0.5 * jnp.sum(r * r)
 
     r0, J0, c0 = lin(x0)
     state = (x0, r0, J0, c0, jnp.asarray(1e-3, x0.dtype), jnp.asarray(0), jnp.asarray(False))
@@ -90,11 +95,12 @@ def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: f
 
     def body(s):
         x, r, J, c, lam, k, _ = s
-        g = J.T @ r
-        H = J.T @ J
+        Ja = J * act[None, :]
+        g = Ja.T @ r
+        H = Ja.T @ Ja
         d = jnp.diag(H)
         d = jnp.maximum(d, 1e-12 * jnp.max(d) + 1e-300)
-        step = -jnp.linalg.solve(H + lam * jnp.diag(d), g)
+        step = -jnp.linalg.solve(H + lam * jnp.diag(d) + jnp.diag(1.0 - act), g) * act
         xn = x + step
         rn, Jn, cn = lin(xn)
         ok = jnp.isfinite(cn) & (cn < c)

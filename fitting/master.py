@@ -90,12 +90,13 @@ def _curve(table: DMATable, s: int):
     return x[o], np.log10(table.storage[m])[o], np.log10(table.loss[m])[o]
 
 
-def pair_shift(a, b, max_shift=12.0, step=0.01, min_overlap=0.2):
+def pair_shift(a, b, max_shift=12.0, step=0.01, min_overlap=0.2, loss_weight=1.0):
     """Shift d (decades) to add to log10 omega of curve ``b`` so that it overlays curve ``a``.
 
     ``a``, ``b``: tuples (log10 omega sorted increasing, log10 storage, log10 loss). Returns
     ``(d, weight, n_overlap)``; weight 0 when the curves never overlap by ``min_overlap``
-    of the shorter log-frequency range (then d is NaN).
+    of the shorter log-frequency range (then d is NaN). ``loss_weight`` scales the loss part
+    of the mismatch (0: storage only, as pyvisco does).
     """
     xa, sa, la = a
     xb, sb, lb = b
@@ -108,14 +109,14 @@ def pair_shift(a, b, max_shift=12.0, step=0.01, min_overlap=0.2):
         # a's values at b's shifted points ...
         rs = np.interp(xs, xa, sa) - sb
         rl = np.interp(xs, xa, la) - lb
-        e1 = np.where(in_a, rs ** 2 + rl ** 2, 0.0).sum(1)
+        e1 = np.where(in_a, rs ** 2 + loss_weight * rl ** 2, 0.0).sum(1)
         n1 = in_a.sum(1)
         # ... and b's values at a's points (symmetric, so neither curve is privileged)
         xa_b = xa[None, :] - d[:, None]
         in_b = (xa_b >= xb[0]) & (xa_b <= xb[-1])
         rs2 = np.interp(xa_b, xb, sb) - sa
         rl2 = np.interp(xa_b, xb, lb) - la
-        e2 = np.where(in_b, rs2 ** 2 + rl2 ** 2, 0.0).sum(1)
+        e2 = np.where(in_b, rs2 ** 2 + loss_weight * rl2 ** 2, 0.0).sum(1)
         n2 = in_b.sum(1)
         n = n1 + n2
         ov = np.minimum(xa[-1], xb[-1] + d) - np.maximum(xa[0], xb[0] + d)
@@ -142,11 +143,13 @@ def pair_shift(a, b, max_shift=12.0, step=0.01, min_overlap=0.2):
     return float(d0), float(weight), int(n[i])
 
 
-def shift_factors(table: DMATable, T_ref: float, neighbours: int = 2, max_shift: float = 12.0) -> ShiftTable:
+def shift_factors(table: DMATable, T_ref: float, neighbours: int = 2, max_shift: float = 12.0,
+                  loss_weight: float = 1.0) -> ShiftTable:
     """log10 a_T of every sweep of ``table`` from data overlap, referred to ``T_ref`` (C).
 
     See the module docstring for the method. ``neighbours``: pairs (i, i+1..i+neighbours)
-    enter the least-squares solve. Raises ValueError for a single temperature, or when some
+    enter the least-squares solve. ``loss_weight``: weight of the loss modulus in the pair
+    mismatch (see :func:`pair_shift`). Raises ValueError for a single temperature, or when some
     sweep overlaps no other.
     """
     n = table.n_sets
@@ -163,7 +166,7 @@ def shift_factors(table: DMATable, T_ref: float, neighbours: int = 2, max_shift:
             j = i + k
             if j >= n:
                 break
-            d, wt, _ = pair_shift(curves[i], curves[j], max_shift=max_shift)
+            d, wt, _ = pair_shift(curves[i], curves[j], max_shift=max_shift, loss_weight=loss_weight)
             if wt > 0 and np.isfinite(d):
                 r = np.zeros(n)
                 r[j], r[i] = 1.0, -1.0

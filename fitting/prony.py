@@ -32,6 +32,7 @@ Steps:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import jax
@@ -143,18 +144,15 @@ def choose_terms(omega_r, storage, loss, densities=(0.5, 0.75, 1.0, 1.25, 1.5, 2
 
 
 # ---- end-to-end refinement ----------------------------------------------------------------
+_WLF, _ARR, _TAB = 0, 1, 2
+
+
 def _law_spec(shift, T_sets, T_ref, T_min):
-    """(name, initial unconstrained params, function params -> log10 a_T per set)."""
-    Ts = jnp.asarray(T_sets)
+    """(kind, initial unconstrained params, params -> physical law, params, cov -> sigma, c2min)."""
     if isinstance(shift, WLF):
         c2min = max(0.0, T_ref - T_min) + 1e-6
         c2 = max(float(shift.C2) - c2min, 1e-3)
         p0 = np.array([math.log(float(shift.C1)), math.log(c2)])
-
-        def law(p):
-            C1, C2 = jnp.exp(p[0]), c2min + jnp.exp(p[1])
-            dT = Ts - T_ref
-            return -C1 * dT / (C2 + dT)
 
         def physical(p):
             return WLF(float(np.exp(p[0])), float(c2min + np.exp(p[1])), float(T_ref))
@@ -162,35 +160,96 @@ def _law_spec(shift, T_sets, T_ref, T_min):
         def sig(p, cov):
             return {"C1": float(np.exp(p[0]) * math.sqrt(max(cov[0, 0], 0))),
                     "C2": float(np.exp(p[1]) * math.sqrt(max(cov[1, 1], 0)))}
-        return p0, law, physical, sig
+        return _WLF, p0, physical, sig, c2min
     if isinstance(shift, Arrhenius):
         p0 = np.array([math.log(float(shift.Ea))])
-        g = (1.0 / (Ts + KELVIN) - 1.0 / (T_ref + KELVIN)) / (GAS_CONSTANT * LN10)
-
-        def law(p):
-            return jnp.exp(p[0]) * g
 
         def physical(p):
             return Arrhenius(float(np.exp(p[0])), float(T_ref))
 
         def sig(p, cov):
             return {"Ea": float(np.exp(p[0]) * math.sqrt(max(cov[0, 0], 0)))}
-        return p0, law, physical, sig
+        return _ARR, p0, physical, sig, 0.0
     if isinstance(shift, ShiftTable):
         p0 = np.asarray(shift.log10_aT(np.asarray(T_sets)), float)
         Tsn = np.asarray(T_sets, float)
-
-        def law(p):
-            # gauge: log10 a_T(T_ref) = 0 on the linear interpolant of the table
-            return p - ShiftTable(Ts, p, jnp.asarray(T_ref)).log10_aT(T_ref)
 
         def physical(p):
             return ShiftTable.make(Tsn, np.asarray(p), T_ref)
 
         def sig(p, cov):
             return {"log10_aT": [float(math.sqrt(max(c, 0))) for c in np.diag(cov)]}
-        return p0, law, physical, sig
+        return _TAB, p0, physical, sig, 0.0
     raise TypeError(f"unknown shift law {type(shift).__name__}")
+
+
+def _law_eval(kind, p, Ts, T_ref, c2min):
+    """log10 a_T per set for the unconstrained law parameters ``p`` (padded vector)."""
+    if kind == _WLF:
+        C1, C2 = jnp.exp(p[0]), c2min + jnp.exp(p[1])
+        dT = Ts - T_ref
+        return -C1 * dT / (C2 + dT)
+    if kind == _ARR:
+        g = (1.0 / (Ts + KELVIN) - 1.0 / (T_ref + KELVIN)) / (GAS_CONSTANT * LN10)
+        return jnp.exp(p[0]) * g
+    q = p[:Ts.shape[0]]
+    # gauge: log10 a_T(T_ref) = 0 on the linear interpolant of the table
+    return q - ShiftTable(Ts, q, T_ref).log10_aT(T_ref)
+
+
+def _resid_jac(x, on, data, kind, K, robust):
+    """Residual (weighted log10 storage and loss, then the time-bound penalty) and its
+    analytic Jacobian with respect to the padded parameter vector (O(N K) work, not the
+    O(N K P) of forward-mode differentiation)."""
+    w, setid, ls, ll, Ts, T_ref, c2min, wts, lt_lo, lt_hi, pen = data
+    nl = x.shape[0] - 2 * K - 1
+    E0 = jnp.exp(x[0])
+    Ek = jnp.exp(x[1:K + 1]) * on
+    lt = x[K + 1:2 * K + 1]
+    plaw = x[2 * K + 1:]
+    L = _law_eval(kind, plaw, Ts, T_ref, c2min)
+    JL = jax.jacfwd(_law_eval, argnums=1)(kind, plaw, Ts, T_ref, c2min)       # (sets, nl)
+    u = jnp.log(w) + LN10 * L[setid]
+    wt = jnp.exp(u[:, None] + lt[None, :])
+    den = 1.0 + wt * wt
+    ps = wt * wt / den
+    pl = wt / den
+    st = E0 + ps @ Ek
+    lo = pl @ Ek
+    dps = 2.0 * ps / den                      # d phi_s / d ln(omega tau)
+    dpl = pl * (1.0 - wt * wt) / den          # d phi_l / d ln(omega tau)
+    cs = wts[0] / (LN10 * st)
+    cl = wts[1] / (LN10 * lo)
+    Js_b = cs[:, None] * dps * Ek[None, :]
+    Jl_b = cl[:, None] * dpl * Ek[None, :]
+    Js_u = jnp.sum(Js_b, axis=1)
+    Jl_u = jnp.sum(Jl_b, axis=1)
+    Jlaw = LN10 * JL[setid]
+    n = w.shape[0]
+    Js = jnp.concatenate([(cs * E0)[:, None], cs[:, None] * ps * Ek[None, :], Js_b, Js_u[:, None] * Jlaw], axis=1)
+    Jl = jnp.concatenate([jnp.zeros((n, 1)), cl[:, None] * pl * Ek[None, :], Jl_b, Jl_u[:, None] * Jlaw], axis=1)
+    r = jnp.concatenate([wts[0] * (jnp.log10(st) - ls), wts[1] * (jnp.log10(lo) - ll)])
+    J = jnp.concatenate([Js, Jl], axis=0)
+    if np.isfinite(robust):
+        rr, dr = jax.jvp(lambda v: _robust(v, robust), (r,), (jnp.ones_like(r),))
+        r, J = rr, J * dr[:, None]
+    # soft bounds: relaxation times stay within the reduced-frequency range of the data
+    # plus a margin (an arm relaxing far below the data is indistinguishable from E0)
+    hi, lo_ = lt > lt_hi, lt < lt_lo
+    bound = pen * on * (jnp.where(hi, lt - lt_hi, 0.0) + jnp.where(lo_, lt_lo - lt, 0.0))
+    Jb = jnp.concatenate([jnp.zeros((K, K + 1)), jnp.diag(pen * on * (hi.astype(x.dtype) - lo_.astype(x.dtype))),
+                          jnp.zeros((K, nl))], axis=1)
+    return jnp.concatenate([r, bound]), jnp.concatenate([J, Jb], axis=0)
+
+
+@functools.partial(jax.jit, static_argnames=("kind", "K", "max_iter", "robust"))
+def _solve(x0, active, data, *, kind, K, max_iter, robust, ftol):
+    """Levenberg-Marquardt on the padded parameter vector [log E0, log E_k (K), log tau_k (K),
+    law (padded)]; inactive entries (``active`` = 0) carry no modulus and do not move. The
+    shapes (K, padded law size, points) are the only things that trigger a compilation."""
+    on = active[1:K + 1]
+    return _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
+                                      resid_jac=lambda x: _resid_jac(x, on, data, kind, K, robust))
 
 
 def log_residual(material: Material, shift, table: DMATable):
@@ -222,52 +281,82 @@ def _robust(r, c):
     return jnp.where(small, r, out)
 
 
+def _pad_size(n, step=8):
+    return max(step, -(-n // step) * step)
+
+
 def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robust: float = math.inf,
-           weights=(1.0, 1.0)) -> PronyFit:
+           weights=(1.0, 1.0), ftol: float = 1e-7, tau_margin: float = 1.0, pad_terms: int | None = None,
+           prune: float = 0.0) -> PronyFit:
     """End-to-end Levenberg-Marquardt refinement of E0, moduli, times and the shift law
     against the raw unshifted data (see the module docstring). Returns a :class:`PronyFit`
-    with uncertainties from the Jacobian at the optimum."""
+    with uncertainties from the Jacobian at the optimum.
+
+    ``ftol``: stop when a step lowers the cost by less than this fraction. ``tau_margin``:
+    decades by which the relaxation times may leave the reduced-frequency range of the data
+    (soft bound, a penalty residual) so that the longest arm cannot stand in for E0.
+    ``pad_terms``: pad the parameter vector to this many terms (default: the next multiple of
+    8) so that refinements of similar size share one compilation. ``prune``: after the
+    refinement, terms whose modulus is below ``prune`` x (E0 + sum E_k) are removed and the
+    rest refined again (0 disables)."""
     T_sets = table.temperatures
     T_ref = float(shift.T_ref)
-    p_law0, law, physical, sig = _law_spec(shift, T_sets, T_ref, float(T_sets.min()))
+    kind, p_law0, physical, sig, c2min = _law_spec(shift, T_sets, T_ref, float(T_sets.min()))
     scale = float(np.median(table.storage))
     K = int(material.moduli.shape[0])
-    E0 = max(float(material.E0), 1e-4 * float(np.min(table.storage)))
-    x0 = np.concatenate([[math.log(E0 / scale)], np.log(np.asarray(material.moduli) / scale),
-                         np.log(np.asarray(material.times)), p_law0])
+    Kp = max(pad_terms or _pad_size(K), K)
     nl = len(p_law0)
-    setid = jnp.asarray(table.set)
-    w = jnp.asarray(table.omega)
-    ls, ll = jnp.log10(jnp.asarray(table.storage)), jnp.log10(jnp.asarray(table.loss))
-
-    def resid(x):
-        E0 = jnp.exp(x[0])
-        Ek = jnp.exp(x[1:K + 1])
-        tau = jnp.exp(x[K + 1:2 * K + 1])
-        L = law(x[2 * K + 1:])[setid]
-        wr = w * 10.0 ** L
-        wt = wr[:, None] * tau[None, :]
-        den = 1.0 + wt * wt
-        st = E0 + jnp.sum(Ek * wt * wt / den, axis=1)
-        lo = jnp.sum(Ek * wt / den, axis=1)
-        r = jnp.concatenate([weights[0] * (jnp.log10(st) - (ls - math.log10(scale))),
-                             weights[1] * (jnp.log10(lo) - (ll - math.log10(scale)))])
-        return _robust(r, robust)
-
-    sol = jax.jit(lambda x: _optim.levenberg_marquardt(lambda y: resid(y), x, max_iter=max_iter))(jnp.asarray(x0))
-    x = np.asarray(sol.x)
-    r = np.asarray(sol.residual)
-    J = np.asarray(sol.jacobian)
-    n, p = len(r), len(x)
+    nlp = max(len(T_sets), 2)
+    E0 = max(float(material.E0), 1e-4 * float(np.min(table.storage)))
+    lEk = np.zeros(Kp)
+    lEk[:K] = np.log(np.asarray(material.moduli) / scale)
+    ltau = np.zeros(Kp)
+    ltau[:K] = np.log(np.asarray(material.times))
+    plaw = np.zeros(nlp)
+    plaw[:nl] = p_law0
+    x0 = np.concatenate([[math.log(E0 / scale)], lEk, ltau, plaw])
+    active = np.concatenate([[1.0], np.arange(Kp) < K, np.arange(Kp) < K, np.arange(nlp) < nl]).astype(float)
+    # reduced-frequency range of the data under the starting shift law
+    wr = np.asarray(table.omega) * 10.0 ** np.asarray(shift.log10_aT(jnp.asarray(table.T)))
+    lt_lo = -math.log(wr.max()) - tau_margin * LN10
+    lt_hi = -math.log(wr.min()) + tau_margin * LN10
+    data = (jnp.asarray(table.omega), jnp.asarray(table.set), jnp.log10(jnp.asarray(table.storage) / scale),
+            jnp.log10(jnp.asarray(table.loss) / scale), jnp.asarray(T_sets, float), jnp.asarray(T_ref),
+            jnp.asarray(c2min), jnp.asarray(weights, float), jnp.asarray(lt_lo), jnp.asarray(lt_hi),
+            jnp.asarray(10.0))
+    sol = _solve(jnp.asarray(x0), jnp.asarray(active), data, kind=kind, K=Kp, max_iter=int(max_iter),
+                 robust=float(robust), ftol=float(ftol))
+    xa = np.asarray(sol.x)
+    iters, conv = int(sol.iterations), bool(sol.converged)
+    if prune > 0:
+        Ek_all = np.exp(xa[1:K + 1]) * scale
+        small = Ek_all < prune * (np.exp(xa[0]) * scale + Ek_all.sum())
+        if small.any() and (~small).sum() >= 1:
+            act2 = active.copy()
+            act2[1:K + 1][small] = 0.0
+            act2[Kp + 1:Kp + K + 1][small] = 0.0
+            sol = _solve(jnp.asarray(xa), jnp.asarray(act2), data, kind=kind, K=Kp, max_iter=int(max_iter),
+                         robust=float(robust), ftol=float(ftol))
+            xa = np.asarray(sol.x)
+            iters += int(sol.iterations)
+            conv = bool(sol.converged)
+            active = act2
+    n = 2 * len(table)
+    on = np.flatnonzero(active > 0)
+    r = np.asarray(sol.residual)[:n]
+    J = np.asarray(sol.jacobian)[:n][:, on]
+    x = xa[on]
+    p = len(x)
+    Kk = int(active[1:Kp + 1].sum())
     rss = float(np.sum(r ** 2))
     s2 = rss / max(n - p, 1)
     cov = s2 * np.linalg.pinv(J.T @ J, rcond=1e-13)
-    E0, Ek, tau = np.exp(x[0]) * scale, np.exp(x[1:K + 1]) * scale, np.exp(x[K + 1:2 * K + 1])
+    E0, Ek, tau = np.exp(x[0]) * scale, np.exp(x[1:Kk + 1]) * scale, np.exp(x[Kk + 1:2 * Kk + 1])
     order = np.argsort(tau)
     sd = np.sqrt(np.clip(np.diag(cov), 0, None))
-    sigma = {"E0": float(E0 * sd[0]), "moduli": list(Ek[order] * sd[1:K + 1][order]),
-             "times": list(tau[order] * sd[K + 1:2 * K + 1][order])}
-    sigma.update(sig(x[2 * K + 1:], cov[2 * K + 1:, 2 * K + 1:]))
+    sigma = {"E0": float(E0 * sd[0]), "moduli": list(Ek[order] * sd[1:Kk + 1][order]),
+             "times": list(tau[order] * sd[Kk + 1:2 * Kk + 1][order])}
+    sigma.update(sig(x[2 * Kk + 1:], cov[2 * Kk + 1:, 2 * Kk + 1:]))
     # terms whose modulus underflowed carry no information: drop them (moduli must be > 0)
     keep = Ek[order] > 1e-12 * (E0 + Ek.sum())
     # a relaxation time that underflowed to 0 (log tau driven out of the data range) is an
@@ -278,5 +367,4 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     E0 = max(E0, 1e-12 * float(Ek.sum()))
     mat = Material.prony(float(E0), Ek[order][keep], tau[order][keep], material.nu)
     bic = n * math.log(rss / n) + p * math.log(n)
-    return PronyFit(mat, physical(x[2 * K + 1:]), sigma, math.sqrt(rss / n), n, bic,
-                    int(sol.iterations), bool(sol.converged))
+    return PronyFit(mat, physical(x[2 * Kk + 1:]), sigma, math.sqrt(rss / n), n, bic, iters, conv)
