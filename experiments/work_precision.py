@@ -29,6 +29,9 @@ tracing + compilation + one run, is reported separately as ``compile_s``):
   terms) and refinement iterations; error = median |log10(pred/meas)| of storage and loss
   on the raw points (there is no exact answer: it measures the fit, not a discretization).
 
+``quick=True`` is a smoke run (one or two coarse grids per series, no tolerance ladders, one
+DMA fit, the first call only), about a minute of CPU.
+
 Outputs in ``out_dir``: ``work_precision.csv``, ``work_precision_<scene>.png`` (log-log error
 against warm time, points labelled with N) and ``work_precision.md`` (observed orders and
 the error and time at each scene's default resolution).
@@ -61,6 +64,12 @@ def _fit_order(ns, errs):
         return math.nan
     x, y = np.log([p[0] for p in pts]), np.log([p[1] for p in pts])
     return float(-np.polyfit(x, y, 1)[0])
+
+
+def _rel(a, b):
+    """|a/b - 1|, NaN when the reference is zero (e.g. a torque on a grid too coarse to see it)."""
+    a, b = float(a), float(b)
+    return abs(a / b - 1) if b != 0 else math.nan
 
 
 def _row(scene, series, N, tol, err, err2, measure, ref, first, warm, it, conv):
@@ -105,8 +114,8 @@ def pin_rows(quick):
     load = Ft * E * R
     b = persson.persson_b_from_load(load, E, R, DR)
     alpha = 2 * np.arctan(b)
-    ns = (64, 128, 256) if quick else (128, 256, 512, 1024, 2048, 4096, 8192)
-    reps = 3 if quick else 7
+    ns = (64, 128) if quick else (128, 256, 512, 1024, 2048, 4096, 8192)
+    reps = 2 if quick else 7
     for n in ns:
         _, ref_len = persson.small_displacement_pin(m, R, DR, load, n)
         fn = lambda: vjax.pin_in_hole(m, R, R - DR, load, 0.0, n=n, ref_length=ref_len, throw=False)
@@ -138,8 +147,8 @@ def pin_rows(quick):
                          "max|p - p_exact|/p_max over |theta| < 0.9 alpha; error_2 = |contact angle error| (rad)",
                          "analytical (Persson-type)", first, warm, it, conv))
     # viscoelastic thesis case vs the finest grid
-    ns_v = (64, 128, 256) if quick else (128, 256, 512, 1024, 2048, 4096)
-    n_ref = 1024 if quick else 16384
+    ns_v = (64,) if quick else (128, 256, 512, 1024, 2048, 4096)
+    n_ref = 128 if quick else 16384
     mv, omega = bench_pin.material(), bench_pin.OMEGA_TILDE / bench_pin.TAU
     ref = bench_pin._pin_fn(n_ref)(mv, omega)
     tq_ref, off_ref = float(ref[0]), float(ref[1])
@@ -147,20 +156,20 @@ def pin_rows(quick):
         fn = bench_pin._pin_fn(n)
         first, warm = _common.time_fn(fn, mv, omega, repeats=reps)
         tq, off, it, conv, _ = fn(mv, omega)
-        rows.append(_row("pin", "viscoelastic vs finest", n, 1e-10, abs(float(tq) / tq_ref - 1),
-                         abs(float(off) / off_ref - 1), "|torque/torque_ref - 1|; error_2 = pin offset",
+        rows.append(_row("pin", "viscoelastic vs finest", n, 1e-10, _rel(tq, tq_ref),
+                         _rel(off, off_ref), "|torque/torque_ref - 1|; error_2 = pin offset",
                          f"n = {n_ref}", first, warm, it, conv))
     # solver tolerance at the default n
-    n = 256 if quick else DEFAULT["pin"]
-    tq_n = float(bench_pin._pin_fn(n)(mv, omega)[0])
-    for tol in ((1e-4, 1e-8) if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12)):
+    n = DEFAULT["pin"]
+    tq_n = math.nan if quick else float(bench_pin._pin_fn(n)(mv, omega)[0])
+    for tol in (() if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12)):
         opts = vjax.SolverOptions(tol=tol)
         fn = jax.jit(lambda mm, w, o=opts: vjax.pin_in_hole(mm, bench_pin.R, bench_pin.R_PIN, bench_pin.LOAD, w, n=n,
                                                             options=o, throw=False))
         first, warm = _common.time_fn(fn, mv, omega, repeats=reps)
         r = fn(mv, omega)
-        rows.append(_row("pin", f"tolerance at n={n}", n, tol, abs(float(r.torque) / tq_n - 1),
-                         abs(float(r.torque) / tq_ref - 1), "|torque/torque(tol=1e-10) - 1|; error_2 vs finest grid",
+        rows.append(_row("pin", f"tolerance at n={n}", n, tol, _rel(r.torque, tq_n),
+                         _rel(r.torque, tq_ref), "|torque/torque(tol=1e-10) - 1|; error_2 vs finest grid",
                          "same n, tol = 1e-10", first, warm, r.iterations, r.converged))
     return rows
 
@@ -172,8 +181,8 @@ def roller_rows(quick):
     from experiments import bench_roller
     rows = []
     w = bench_roller.shaft(1.4)
-    ns = (32, 64) if quick else (128, 256, 512, 1024, 2048)
-    n_ref = 128 if quick else 4096
+    ns = (16,) if quick else (128, 256, 512, 1024, 2048)
+    n_ref = 32 if quick else 4096
     reps = 2 if quick else 5
     ref = bench_roller._solve(n_ref, w)
     loads_ref, tq_ref = np.asarray(ref.roller_loads[0]), float(ref.torque[0])
@@ -182,16 +191,18 @@ def roller_rows(quick):
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         err = float(np.max(np.abs(np.asarray(r.roller_loads[0]) - loads_ref)) / loads_ref.max())
-        rows.append(_row("roller", "thesis bearing vs finest", n, 1e-10, err, abs(float(r.torque[0]) / tq_ref - 1),
+        rows.append(_row("roller", "thesis bearing vs finest", n, 1e-10, err, _rel(r.torque[0], tq_ref),
                          "max|roller load error|/max load; error_2 = |torque/torque_ref - 1|", f"n = {n_ref}",
                          first, warm, r.iterations, r.converged))
         print(f"roller n={n}: err {err:.3g}, warm {warm:.3g} s", flush=True)
-    n = 64 if quick else DEFAULT["roller"]
+    n = DEFAULT["roller"]
+    if quick:   # no tolerance ladder in quick mode (each tolerance is one compilation)
+        return rows
     import vjax
     base = vjax.roller_bearing(bench_roller.SLS, bench_roller.SLS, bench_roller.RO, bench_roller.RI, bench_roller.D,
                                bench_roller.Z, bench_roller.LOAD, omega_inner=w, n=n, tol=1e-12, throw=False)
     lb = np.asarray(base.roller_loads[0])
-    for tol in ((1e-4, 1e-8) if quick else (1e-3, 1e-6, 1e-9)):   # tol is static: one compile each
+    for tol in (() if quick else (1e-3, 1e-6, 1e-9)):   # tol is static: one compile each
         fn = lambda tol=tol: vjax.roller_bearing(bench_roller.SLS, bench_roller.SLS, bench_roller.RO, bench_roller.RI,
                                                  bench_roller.D, bench_roller.Z, bench_roller.LOAD, omega_inner=w,
                                                  n=n, tol=tol, throw=False)
@@ -226,8 +237,8 @@ def journal_rows(quick):
                          "|eps - eps_exact|; error_2 = |attitude - pi/2| (rad)", "closed form (Sommerfeld)",
                          first, warm, r.iterations, r.converged))
         print(f"journal Sommerfeld n={n}: err {rows[-1]['error']:.3g}, warm {warm:.3g} s", flush=True)
-    ns = (32, 64) if quick else (64, 128, 256, 512)
-    n_ref = 128 if quick else 2048
+    ns = (32,) if quick else (64, 128, 256, 512)
+    n_ref = 64 if quick else 2048
     coarse = bench_journal._point(ns[-1])
     ref = bench_journal._point(n_ref, initial=bench_journal._refined(coarse, n_ref))
     for n in ns:
@@ -235,15 +246,17 @@ def journal_rows(quick):
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         rows.append(_row("journal", "HS thesis case vs finest", n, 1e-10, abs(float(r.eccentricity - ref.eccentricity)),
-                         abs(float(r.torque_bearing / ref.torque_bearing) - 1),
+                         _rel(r.torque_bearing, ref.torque_bearing),
                          "|eps - eps_ref|; error_2 = |torque/torque_ref - 1|", f"n = {n_ref}", first, warm,
                          r.iterations, r.converged))
         print(f"journal HS n={n}: err {rows[-1]['error']:.3g}, warm {warm:.3g} s", flush=True)
-    n = 64 if quick else DEFAULT["journal"]
+    n = DEFAULT["journal"]
+    if quick:
+        return rows
     base = vjax.journal_bearing(bench_journal.RB, bench_journal.C, bench_journal.ETA, bench_journal.WJ,
                                 bench_journal.WB, load=bench_journal.LOAD, n=n, bearing=bench_journal.SLS, tol=1e-12,
                                 throw=False)
-    for tol in ((1e-4, 1e-8) if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)):
+    for tol in (() if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)):
         fn = lambda tol=tol: vjax.journal_bearing(bench_journal.RB, bench_journal.C, bench_journal.ETA,
                                                   bench_journal.WJ, bench_journal.WB, load=bench_journal.LOAD, n=n,
                                                   bearing=bench_journal.SLS, tol=tol, throw=False)
@@ -266,11 +279,12 @@ def fit_rows(quick):
     for density, iters in ladder:
         fn = lambda d=density, k=iters: calibrate(path, 25.0, law="WLF", densities=(d,), max_iter=k)
         t0 = time.perf_counter()
-        fn()
-        first = time.perf_counter() - t0
-        t0 = time.perf_counter()
         mat, shift, rep = fn()
-        warm = time.perf_counter() - t0
+        first = warm = time.perf_counter() - t0
+        if not quick:   # a second, warm run (quick: the first call only)
+            t0 = time.perf_counter()
+            mat, shift, rep = fn()
+            warm = time.perf_counter() - t0
         e = rep.errors
         rows.append(_row("dma_fit", f"density {density}/decade, max_iter {iters}", rep.terms, iters,
                          0.5 * (e["storage_median"] + e["loss_median"]), 0.5 * (e["storage_p90"] + e["loss_p90"]),
