@@ -35,10 +35,10 @@ __all__ = ["calibrate", "Report"]
 # loss (the smoother, better-superposing half of DMA data), Cauchy loss with scale 0.03 decades
 # (7%: a few inconsistent points, typically loss near the glassy plateau, do not bend the
 # fit), relaxation times within half a decade of the data range (E0 stays physical)
-WEIGHTS = (3.0, 1.0)
+WEIGHTS = (5.0, 1.0)
 ROBUST = 0.03
 FTOL = 1e-5
-TAU_MARGIN = 0.5
+TAU_MARGIN = 0.0
 
 
 @dataclasses.dataclass
@@ -138,8 +138,15 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     for d, E0, Ek, tau in starts:
         m0 = Material.prony(max(E0, 1e-6 * float(table.storage.min())), Ek, tau, nu)
         cands.append((d, prony.refine(table, m0, start, **opts)))
-    f_tab = min((f for _, f in cands), key=lambda f: f.bic)
-    crit = tuple((d, f.terms, f.bic, f.rms) for d, f in cands)
+    # BIC of the unweighted log residuals (the weighted one would let the down-weighted loss
+    # go unresolved and pick too few terms); the shift parameters are common to all candidates
+    n_obs = 2 * len(table)
+
+    def bic(f):
+        return n_obs * math.log(prony.raw_errors(f.material, f.shift, table)["rms"] ** 2) \
+            + (2 * f.terms + 1) * math.log(n_obs)
+    crit = tuple((d, f.terms, bic(f), f.rms) for d, f in cands)
+    f_tab = cands[min(range(len(cands)), key=lambda i: crit[i][2])][1]
 
     fits = {"table": f_tab}
     todo = {"auto": ["WLF"], "WLF": ["WLF"], "Arrhenius": ["Arrhenius"], "table": []}[law]
