@@ -134,19 +134,27 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     # one padded size for all candidates: a single compilation per law
     opts = dict(max_iter=max_iter, weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=TAU_MARGIN,
                 pad_terms=prony._pad_size(max(len(s[2]) for s in starts)))
-    cands = []
-    for d, E0, Ek, tau in starts:
-        m0 = Material.prony(max(E0, 1e-6 * float(table.storage.min())), Ek, tau, nu)
-        cands.append((d, prony.refine(table, m0, start, **opts)))
     # BIC of the unweighted log residuals (the weighted one would let the down-weighted loss
-    # go unresolved and pick too few terms); the shift parameters are common to all candidates
+    # go unresolved and pick too few terms); the shift parameters are common to all candidates.
+    # Densities in increasing order; stop once the BIC has risen twice in a row.
     n_obs = 2 * len(table)
 
     def bic(f):
         return n_obs * math.log(prony.raw_errors(f.material, f.shift, table)["rms"] ** 2) \
             + (2 * f.terms + 1) * math.log(n_obs)
-    crit = tuple((d, f.terms, bic(f), f.rms) for d, f in cands)
-    f_tab = cands[min(range(len(cands)), key=lambda i: crit[i][2])][1]
+    crit, f_tab, best, worse = [], None, math.inf, 0
+    for d, E0, Ek, tau in starts:
+        m0 = Material.prony(max(E0, 1e-6 * float(table.storage.min())), Ek, tau, nu)
+        f = prony.refine(table, m0, start, **opts)
+        b = bic(f)
+        crit.append((d, f.terms, b, f.rms))
+        if b < best:
+            f_tab, best, worse = f, b, 0
+        else:
+            worse += 1
+            if worse >= 2:
+                break
+    crit = tuple(crit)
 
     fits = {"table": f_tab}
     todo = {"auto": ["WLF"], "WLF": ["WLF"], "Arrhenius": ["Arrhenius"], "table": []}[law]
