@@ -38,6 +38,7 @@ __all__ = ["calibrate", "Report"]
 WEIGHTS = (5.0, 1.0)
 ROBUST = 0.03
 FTOL = 1e-5
+SCREEN_FTOL = 3e-5     # the term-count candidates; the chosen one is finished at FTOL
 TAU_MARGIN = 0.0
 
 
@@ -145,7 +146,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     crit, f_tab, best, worse = [], None, math.inf, 0
     for d, E0, Ek, tau in starts:
         m0 = Material.prony(max(E0, 1e-6 * float(table.storage.min())), Ek, tau, nu)
-        f = prony.refine(table, m0, start, **opts)
+        f = prony.refine(table, m0, start, **dict(opts, ftol=SCREEN_FTOL))
         b = bic(f)
         crit.append((d, f.terms, b, f.rms))
         if b < best:
@@ -155,6 +156,8 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
             if worse >= 2:
                 break
     crit = tuple(crit)
+    # the candidates were screened with a looser tolerance: finish the chosen one
+    f_tab = prony.refine(table, f_tab.material, f_tab.shift, **opts)
 
     fits = {"table": f_tab}
     todo = {"auto": ["WLF"], "WLF": ["WLF"], "Arrhenius": ["Arrhenius"], "table": []}[law]

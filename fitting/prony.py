@@ -365,6 +365,19 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     sigma["moduli"] = [v for v, k in zip(sigma["moduli"], keep) if k]
     sigma["times"] = [v for v, k in zip(sigma["times"], keep) if k]
     E0 = max(E0, 1e-12 * float(Ek.sum()))
-    mat = Material.prony(float(E0), Ek[order][keep], tau[order][keep], material.nu)
+    # two arms that converged onto the same relaxation time (e.g. both held at the bound) are
+    # one arm: merge them (moduli add, their uncertainties in quadrature)
+    Ekk, tk = list(Ek[order][keep]), list(tau[order][keep])
+    sm, st = sigma["moduli"], sigma["times"]
+    i = 1
+    while i < len(tk):
+        if tk[i] <= tk[i - 1] * (1.0 + 1e-9):
+            Ekk[i - 1] += Ekk.pop(i)
+            tk.pop(i)
+            sm[i - 1] = math.hypot(sm[i - 1], sm.pop(i))
+            st[i - 1] = max(st[i - 1], st.pop(i))
+        else:
+            i += 1
+    mat = Material.prony(float(E0), np.asarray(Ekk), np.asarray(tk), material.nu)
     bic = n * math.log(rss / n) + p * math.log(n)
     return PronyFit(mat, physical(x[2 * Kk + 1:]), sigma, math.sqrt(rss / n), n, bic, iters, conv)
