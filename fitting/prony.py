@@ -21,11 +21,17 @@ Steps:
 2. The density (hence the number of terms) is chosen by the **Bayesian information
    criterion** BIC = n ln(RSS/n) + p ln(n) on the log10 residuals of the master curve, with
    n = 2 x points and p = 2 K + 1 (each kept term carries a modulus and a time, plus E0).
+   (:func:`fitting.calibrate` instead refines one candidate per density and compares the
+   BIC after refinement.)
 3. :func:`refine` - all parameters (log E0, log E_k, log tau_k and the shift-law parameters:
    C1, C2 for WLF, Ea for Arrhenius, or one log10 a_T per sweep for a table) minimize the
    log residual on the **raw unshifted** data by Levenberg-Marquardt with JAX Jacobians
    (:mod:`fitting._optim`). Positivity holds by construction (log parameters; WLF C2 is kept
-   above the asymptote, C2 > T_ref - min T).
+   above the asymptote, C2 > T_ref - min T). The relaxation times are held within the
+   reduced-frequency range of the data plus ``tau_margin`` decades by a penalty residual (an
+   arm relaxing below the data would stand in for E0). The Jacobian is analytic and the
+   parameter vector is padded to a fixed number of terms, so one compilation serves all
+   refinements of a data set; storage/loss weights and a Cauchy loss are options.
 4. Uncertainties: covariance s^2 (J^T J)^+ at the optimum, s^2 = RSS/(n - p), mapped from
    the log parameters to the physical ones by the delta method (one standard deviation).
 """
