@@ -504,6 +504,15 @@ def roller_bearing(outer, inner, R_outer, R_inner, roller_diameter, n_rollers: i
         _checks.finite(name, val)
     if roller_angle is not None:
         _checks.finite("roller_angle", roller_angle)
+    for name, val in (("R_outer", R_outer), ("R_inner", R_inner), ("roller_diameter", roller_diameter),
+                      ("load", load), ("load_angle", load_angle), ("omega_inner", omega_inner),
+                      ("omega_outer", omega_outer), ("ref_length", ref_length)):
+        _checks.scalar(name, val)
+    if not (isinstance(tol, (int, float, np.floating)) and np.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be a finite number > 0, got {tol!r}")
+    if not isinstance(max_iter, (int, np.integer)) or max_iter < 1:
+        raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+    _checks.instance("options", options, SolverOptions, "a vjax.SolverOptions")
     if not isinstance(n_rollers, (int, np.integer)) or n_rollers < 2:
         raise ValueError(f"n_rollers must be an integer >= 2, got {n_rollers!r}")
     if not isinstance(n, (int, np.integer)) or n < 16:
