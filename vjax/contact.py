@@ -181,6 +181,8 @@ def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
     d_of = lambda q: interference(q, args)
     jac_of = (lambda q: jax.jacfwd(d_of)(q)) if k else (lambda q: jnp.zeros(d_of(q).shape + (0,), q.dtype))
     tiny = jnp.finfo(q0.dtype).tiny
+    # The residual cannot go below rounding: in float32 a 1e-10 tolerance would never be met.
+    tol = max(opts.tol, 1e3 * float(jnp.finfo(q0.dtype).eps))
 
     def residual(sigma, q, u):
         g = u - d_of(q)
@@ -217,7 +219,7 @@ def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
         # The residual certifies the solution by itself: a zero-pressure edge element that
         # still flips in or out of the set does not keep the loop going.
         *_, it, res = state
-        return (res > opts.tol) & (it < opts.max_iter)
+        return (res > tol) & (it < opts.max_iter)
 
     if sigma_init is None:
         sigma0 = jnp.zeros(op.n, dtype=q0.dtype)
@@ -228,7 +230,7 @@ def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
     init = (sigma0, q0, u0, active_set(sigma0, q0, u0), jnp.asarray(0), jnp.asarray(jnp.inf, q0.dtype))
     sigma, q, u, _, it, res = jax.lax.while_loop(cond, body, init)
     # the active set of the derivative: the set of the converged solution
-    return ContactSolution(sigma, u, q, active_set(sigma, q, u), it, res, res <= opts.tol)
+    return ContactSolution(sigma, u, q, active_set(sigma, q, u), it, res, res <= tol)
 
 
 @partial(jax.custom_jvp, nondiff_argnums=(1, 2, 6))

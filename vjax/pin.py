@@ -64,7 +64,11 @@ def pin_patch_speed(omega_pin, R, R_pin):
 def _pin_interference(q, args):
     R, R_pin, theta = args
     e = q[0]
-    return e * jnp.cos(theta) + jnp.sqrt(R_pin**2 - (e * jnp.sin(theta)) ** 2) - R
+    # A ray from the hole centre that misses the pin (only possible for e > R_pin, e.g. a
+    # Newton step at huge load) has no overlap: far away, not NaN ("double where").
+    s = R_pin**2 - (e * jnp.sin(theta)) ** 2
+    hit = s > 0
+    return jnp.where(hit, e * jnp.cos(theta) + jnp.sqrt(jnp.where(hit, s, 1.0)) - R, -R)
 
 
 def _pin_force(sigma, u, args):
