@@ -43,7 +43,6 @@ def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_ma
     """Runs inside the subprocess: one sweep, returns its numbers."""
     _common.enable_x64()
     import jax
-    import jax.numpy as jnp
     import numpy as np
     import vjax
 
@@ -118,7 +117,7 @@ def main(out_dir="experiments/out", quick: bool = False) -> dict:
         load = os.getloadavg()
     except OSError:
         load = (float("nan"),) * 3
-    notes = [f"pin_in_hole design sweep: speed x load x clearance, SLS 1/10 MPa tau 0.01 s, R 0.08 m",
+    notes = ["pin_in_hole design sweep: speed x load x clearance, SLS 1/10 MPa tau 0.01 s, R 0.08 m",
              f"CPU cores: {os.cpu_count()}, load average at the end: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}",
              f"speed-up 1 -> 2 devices (shard_map): {speedup_best:.2f}x (best runs), {speedup_med:.2f}x (median); "
              f"with XLA auto partitioning: {auto['best'] / one['best']:.2f}x (best); repeats per configuration: "

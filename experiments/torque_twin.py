@@ -33,10 +33,7 @@ Run: ``python -m experiments.torque_twin [--quick] [--scene pin|roller]``.
 from __future__ import annotations
 
 import argparse
-import json
-import math
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -75,7 +72,6 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     import matplotlib.pyplot as plt
     from fitting import io as fio
     from fitting import torque as ft
-    from vjax import WLF
 
     t_all = time.perf_counter()
     true_mat, true_shift, dma_table = twin_material(quick)
@@ -135,7 +131,6 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
 
     # ---- tables ----
     names = P.names()
-    x0 = P.pack(start_mat, start_shift)
     rows = []
     for label, fit in results.items():
         for name, before, after, sd, truth, e0, e1 in fit.table(truth=x_true):

@@ -33,7 +33,6 @@ import dataclasses
 import math
 import os
 import re
-from typing import Iterable, Sequence
 
 import numpy as np
 

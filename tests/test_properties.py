@@ -5,7 +5,6 @@ to 24 decades) and random ring configurations. Few examples each and no deadline
 shapes (number of arms, n) are drawn from small sets so that the jitted symbol and creep
 spectrum compile only a handful of times. The whole file runs in well under a minute.
 """
-import jax
 import jax.numpy as jnp
 import numpy as np
 from hypothesis import HealthCheck, given, settings

@@ -284,7 +284,6 @@ def _contact_ok(out):
 
 def _guess(P, cfg):
     """Deflections from a linear spring per roller and ring (E0 per unit overlap)."""
-    Z = cfg.Z
     psi = P["psi"]
     c = jnp.cos(psi - P["load_angle"])
     kO, kI = P["kO"], P["kI"]
