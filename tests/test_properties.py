@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from vjax import WLF, Arrhenius, Material, effective_compliance, ring_operator
-from vjax.pin import spectral_derivative
+from vjax.operator import spectral_derivative
 
 FEW = settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow],
                derandomize=True)

@@ -155,3 +155,11 @@ def _symbol(kind, material, R, n, omega, memory, ref_length):
     """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, memory, material shape)."""
     modes = jnp.arange(n // 2 + 1, dtype=jnp.result_type(float))
     return R * element_symbol(kind, n, R, material.nu, ref_length) * effective_compliance(material, modes, omega, memory)
+
+
+def spectral_derivative(u):
+    """du/dtheta of a periodic sampled field (Nyquist mode dropped)."""
+    n = u.shape[-1]
+    k = jnp.arange(n // 2 + 1)
+    k = jnp.where(k == n // 2, 0, k) if n % 2 == 0 else k
+    return jnp.fft.irfft(1j * k * jnp.fft.rfft(u), n)

@@ -25,7 +25,7 @@ from . import _checks
 from ._report import check_converged
 from .contact import SolverOptions, solve_contact, solve_with_fallback
 from .material import Material
-from .operator import grid, memory_revolutions, ring_operator
+from .operator import grid, memory_revolutions, ring_operator, spectral_derivative
 
 
 @jax.tree_util.register_dataclass
@@ -76,14 +76,6 @@ def _pin_force(sigma, u, args):
     R, _, theta = args
     du = spectral_derivative(u)
     return (2 * jnp.pi / theta.shape[0]) * jnp.sum(sigma * (R * jnp.cos(theta) + du * jnp.sin(theta)))[None]
-
-
-def spectral_derivative(u):
-    """du/dtheta of a periodic sampled field (Nyquist mode dropped)."""
-    n = u.shape[-1]
-    k = jnp.arange(n // 2 + 1)
-    k = jnp.where(k == n // 2, 0, k) if n % 2 == 0 else k
-    return jnp.fft.irfft(1j * k * jnp.fft.rfft(u), n)
 
 
 def pin_in_hole(material: Material, R, R_pin, load, omega=0.0, *, memory="periodic", n: int = 1024,
