@@ -19,14 +19,11 @@
    differences, Gauss-Newton uncertainties and the identifiability analysis (singular
    values of the torque Jacobian).
 
-Scene: ``--scene pin`` (default: a polymer pin joint, rigid pin R' = 9.9 mm in a 10 mm hole
-of the fitted material, F~ = 1e-2, 1e-2 and 2e-2 x E0 R, n = 128) or ``--scene roller``
-(needle roller bearing of the thesis geometry, n = 256 per ring). The pin is the default
-because (measured on this 2-core machine under load) the roller bearing's residual +
-Jacobian function took 150 s to compile and 1.9 s per evaluation of 24 points (the pin:
-17 s and 0.04 s), and with this stiff polymer (E0 = 240 MPa, Einf ~ 7 GPa) its torques at
-F~ = 4e-3 came out of either sign and ~1e-2 N m/m at 40 C (converged flags True), which
-needs a look by the roller scene's owner before it is used as a twin.
+Scene: ``--scene roller`` (default: needle roller bearing of the thesis geometry, R_O = 6
+mm, R_I = 4 mm, 9 rollers, both rings of the fitted material, outer ring fixed, F~ =
+F/(E0 R_O) = 4e-3 and 8e-3, n = 256 per ring) or ``--scene pin`` (a polymer pin joint,
+rigid pin R' = 9.9 mm in a 10 mm hole of the fitted material, F~ = 1e-2 and 2e-2, n = 128).
+Outputs are ``torque_twin_<scene>_*`` (csv, png, json, txt).
 
 Run: ``python -m experiments.torque_twin [--quick] [--scene pin|roller]``.
 """
@@ -42,17 +39,18 @@ from experiments import _common
 T_REF = 25.0
 
 
-def twin_material(quick: bool = False):
-    """The true material: 10-term Prony + WLF fitted to the shipped pyvisco DMA data at
-    10-100 C. Returns (Material, WLF, DMATable used)."""
+def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0.5):
+    """The true material: Prony + WLF fitted to a shipped DMA data set (``data``: "pyvisco"
+    or "dmasuite") at 10-100 C with ``density`` terms per decade (pyvisco, 0.5: 10 terms).
+    Returns (Material, WLF, DMATable used)."""
     from fitting import dma, master, prony
     from vjax import Material
 
-    tab = dma.read(dma.default_data("pyvisco"))
+    tab = dma.read(dma.default_data(data))
     sub = tab.subset((tab.T >= 10.0) & (tab.T <= 100.0))
     wlf, _ = master.fit_law(master.shift_factors(sub, T_REF), "WLF")
     wr = sub.omega * 10.0 ** np.asarray(wlf.log10_aT(sub.T))
-    E0, Ek, tau = prony.fit_master(wr, sub.storage, sub.loss, density=0.5)
+    E0, Ek, tau = prony.fit_master(wr, sub.storage, sub.loss, density=density)
     fit = prony.refine(sub, Material.prony(E0, Ek, tau, 0.5), wlf, max_iter=60 if quick else 200)
     return fit.material, fit.shift, sub
 
@@ -65,7 +63,7 @@ def _scene(name, quick):
     return ft.pin_model(n=64 if quick else 128), 0.01, 0.0099 / (0.01 - 0.0099)
 
 
-def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", steps=None) -> dict:
+def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", steps=None) -> dict:
     out = _common.setup(out_dir)
     import jax
     import jax.numpy as jnp
@@ -74,11 +72,12 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     from fitting import torque as ft
 
     t_all = time.perf_counter()
+    stem = f"torque_twin_{scene}"
     true_mat, true_shift, dma_table = twin_material(quick)
     K = int(true_mat.moduli.shape[0])
     print(f"truth: {K}-term Prony, E0 = {float(true_mat.E0):.4g} Pa, WLF C1 = {float(true_shift.C1):.4g}, "
           f"C2 = {float(true_shift.C2):.4g} C, T_ref = {T_REF} C", flush=True)
-    fio.save_material(out / "torque_twin_truth.json", true_mat, true_shift)
+    fio.save_material(out / f"{stem}_truth.json", true_mat, true_shift)
 
     model, R_scale, patch = _scene(scene, quick)
     E0 = float(true_mat.E0)
@@ -97,7 +96,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     rng = np.random.default_rng(7)
     noisy = tq_true * (1.0 + 0.05 * rng.normal(size=tq_true.shape))
     sigma = 0.05 * np.abs(tq_true)
-    csv_path = out / "torque_twin_data.csv"
+    csv_path = out / f"{stem}_data.csv"
     ft.write_torque_csv(csv_path, ft.TorqueData(rpm, T, load, noisy, sigma),
                         comments=[f"twin experiment: {model.scene}", "true torque x (1 + 0.05 N(0,1)), seed 7",
                                   "scatter = 5% of the true torque"])
@@ -137,7 +136,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
             ident = "yes" if fit.ident["sd"][name] < 0.1 else "no"
             rows.append([label, name, truth, before, after, sd, e0, e1, ident])
     header = ["fit", "param", "truth", "start", "fitted", "sd_rel_GN", "err_start", "err_fitted", "torque_identifies"]
-    _common.write_csv(out / "torque_twin_params.csv", header, rows,
+    _common.write_csv(out / f"{stem}_params.csv", header, rows,
                       comments=["units: Pa for E0/E_k, C1 dimensionless, C2 in C; errors relative to the truth",
                                 "sd_rel_GN: Gauss-Newton standard deviation of the log-parameter (torque + DMA terms "
                                 "of that fit)", "torque_identifies: sd from the torque Jacobian alone < 10%"])
@@ -163,7 +162,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
                "rms_log_param_err_start", "rms_log_param_err_fitted", "identified_combo_err_start",
                "identified_combo_err_fitted",
                "iterations", "wall_s", "first_eval_s", "converged"]
-    _common.write_csv(out / "torque_twin_summary.csv", sheader, summary_rows,
+    _common.write_csv(out / f"{stem}_summary.csv", sheader, summary_rows,
                       comments=[f"chi2 per point of the noisy data; the true material gives {chi_true:.3f}",
                                 "param errors: rms of log(fitted/true) (all parameters; and projected on the "
                                 f"{len(ident_true['identified_basis'])} directions the torque identifies at the truth)",
@@ -173,7 +172,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     # ---- refined material JSON (the torque + DMA fit) ----
     best = results["torque + DMA"]
     unc = {n: float(s) for n, s in zip(names, best.sd)}
-    fio.save_material(out / "torque_twin_refined.json", best.material, best.shift, uncertainty={"sd_rel": unc},
+    fio.save_material(out / f"{stem}_refined.json", best.material, best.shift, uncertainty={"sd_rel": unc},
                       fit={"scene": model.scene, "loss": best.loss, "iterations": best.iterations})
 
     # ---- plots ----
@@ -193,7 +192,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
         ax.set_title(f"{label}: start (dotted), fitted (dashed), truth (thin)")
     np.atleast_1d(axes)[0].set_ylabel("friction torque (N m/m)")
     np.atleast_1d(axes)[0].legend(fontsize=7)
-    _common.save_figure(fig, out / "torque_twin_torque.png")
+    _common.save_figure(fig, out / f"{stem}_torque.png")
 
     w = np.logspace(-8, 6, 300)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -215,7 +214,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     axes[0].legend(fontsize=8)
     axes[0].set_title("storage modulus (grey: probed by the torque data)")
     axes[1].set_title("loss modulus")
-    _common.save_figure(fig, out / "torque_twin_moduli.png")
+    _common.save_figure(fig, out / f"{stem}_moduli.png")
 
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
     for label, fit in results.items():
@@ -225,7 +224,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     ax.set_xlabel("Adam iteration")
     ax.set_ylabel("loss")
     ax.legend()
-    _common.save_figure(fig, out / "torque_twin_loss.png")
+    _common.save_figure(fig, out / f"{stem}_loss.png")
 
     # ---- identifiability ----
     lines = [stext, "", f"scene: {model.scene}; data: {len(data)} points, 5% noise; truth chi2 {chi_true:.3f}",
@@ -243,7 +242,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
     lines.append(f"total wall time {time.perf_counter() - t_all:.1f} s")
     text = "\n".join(lines)
     print("\n".join(lines[1:]))
-    _common.atomic_write_text(out / "torque_twin_summary.txt", text + "\n")
+    _common.atomic_write_text(out / f"{stem}_summary.txt", text + "\n")
     return {"summary": summary_rows, "gradient_check": gc_rows, "results": results, "truth": x_true,
             "chi_true": chi_true}
 
@@ -251,7 +250,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "pin", ste
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--scene", choices=("roller", "pin"), default="pin")
+    ap.add_argument("--scene", choices=("roller", "pin"), default="roller")
     ap.add_argument("--steps", type=int, default=None)
     ap.add_argument("--out", default="experiments/out")
     a = ap.parse_args()
