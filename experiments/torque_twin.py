@@ -66,9 +66,9 @@ def _scene(name, quick):
 def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", steps=None) -> dict:
     out = _common.setup(out_dir)
     import jax
-    import jax.numpy as jnp
     import matplotlib.pyplot as plt
     from fitting import io as fio
+    from fitting import plots
     from fitting import torque as ft
 
     t_all = time.perf_counter()
@@ -176,45 +176,15 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", 
                       fit={"scene": model.scene, "loss": best.loss, "iterations": best.iterations})
 
     # ---- plots ----
-    fig, axes = plt.subplots(1, len(results), figsize=(6 * len(results), 4.2), sharey=True)
-    for ax, (label, fit) in zip(np.atleast_1d(axes), results.items()):
-        for j, (Tc, Fc) in enumerate(conds):
-            sel = (data.T == Tc) & (data.load == Fc)
-            c = f"C{j}"
-            ax.errorbar(data.rpm[sel], data.torque[sel], yerr=sigma[sel], fmt="o", color=c, ms=4,
-                        label=f"data {Tc:g} C, {Fc:.3g} N/m")
-            ax.plot(data.rpm[sel], tq_true[sel], "-", color=c, lw=1, alpha=0.5)
-            ax.plot(data.rpm[sel], fit.torque0[sel], ":", color=c)
-            ax.plot(data.rpm[sel], fit.torque[sel], "--", color=c)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("shaft speed (rpm)")
-        ax.set_title(f"{label}: start (dotted), fitted (dashed), truth (thin)")
-    np.atleast_1d(axes)[0].set_ylabel("friction torque (N m/m)")
-    np.atleast_1d(axes)[0].legend(fontsize=7)
-    _common.save_figure(fig, out / f"{stem}_torque.png")
-
-    w = np.logspace(-8, 6, 300)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-    for mat, lab, style in ((true_mat, "truth", "k-"), (start_mat, "start", "k:"),
-                            (results["torque only"].material, "torque only", "C1--"),
-                            (best.material, "torque + DMA", "C2-.")):
-        E = np.asarray(mat.modulus(jnp.asarray(w)))
-        axes[0].loglog(w, E.real, style, label=lab)
-        axes[1].loglog(w, E.imag, style, label=lab)
+    plots.torque_fit(data, results, sigma, out / f"{stem}_torque.png", truth=tq_true)
     # reduced frequencies that the torque data probe (patch speed x modes 1..10, shifted to 25 C)
-    for ax in axes:
-        for Tc in (40.0, 70.0):
-            aT = 10 ** float(true_shift.log10_aT(Tc))
-            ax.axvspan(aT * speeds.min() * 2 * np.pi / 60 * patch, aT * speeds.max() * 2 * np.pi / 60 * patch * 10,
-                       color="0.9", zorder=0)
-        ax.set_xlabel("reduced angular frequency at 25 C (rad/s)")
-    axes[0].set_ylabel("E' (Pa)")
-    axes[1].set_ylabel("E'' (Pa)")
-    axes[0].legend(fontsize=8)
-    axes[0].set_title("storage modulus (grey: probed by the torque data)")
-    axes[1].set_title("loss modulus")
-    _common.save_figure(fig, out / f"{stem}_moduli.png")
+    bands = []
+    for Tc in (40.0, 70.0):
+        aT = 10 ** float(true_shift.log10_aT(Tc))
+        bands.append((aT * speeds.min() * 2 * np.pi / 60 * patch, aT * speeds.max() * 2 * np.pi / 60 * patch * 10))
+    plots.moduli([(true_mat, "truth", "k-"), (start_mat, "start", "k:"),
+                  (results["torque only"].material, "torque only", "C1--"), (best.material, "torque + DMA", "C2-.")],
+                 out / f"{stem}_moduli.png", bands=bands)
 
     fig, ax = plt.subplots(figsize=(5.5, 3.8))
     for label, fit in results.items():

@@ -1,4 +1,5 @@
-"""Plots of a calibration: master curve, shift factors, residuals, relaxation spectrum.
+"""Plots of a calibration (master curve, shift factors, residuals, relaxation spectrum) and
+of a torque fit (torque before/after, moduli before/after).
 
 Each function draws on a new matplotlib figure (Agg backend, no display needed) and, when
 ``path`` is given, saves it atomically (temporary file + os.replace) and closes it.
@@ -14,7 +15,7 @@ matplotlib.use("Agg", force=False)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "save_all"]
+__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "save_all", "torque_fit", "moduli"]
 
 
 def _save(fig, path):
@@ -114,3 +115,54 @@ def save_all(out_dir, stem, table, material, shift, data_shift) -> list:
     p = lambda s: os.path.join(out_dir, f"{stem}_{s}.png")
     return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift")),
             residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum"))]
+
+
+def torque_fit(data, fits, sigma, path=None, truth=None):
+    """Torque versus shaft speed, one colour per (temperature, load): data with error bars,
+    model at the start (dotted) and after the fit (dashed), one panel per fit in ``fits``
+    (label -> :class:`fitting.torque.TorqueFit`); ``truth`` (optional, twin experiments):
+    torques of the true material (thin line)."""
+    conds = sorted(set(zip(data.T.tolist(), data.load.tolist())))
+    fig, axes = plt.subplots(1, len(fits), figsize=(6 * len(fits), 4.2), sharey=True, squeeze=False)
+    for ax, (label, fit) in zip(axes[0], fits.items()):
+        for j, (Tc, Fc) in enumerate(conds):
+            sel = (data.T == Tc) & (data.load == Fc)
+            o = np.argsort(data.rpm[sel])
+            c = f"C{j % 10}"
+            ax.errorbar(data.rpm[sel][o], data.torque[sel][o], yerr=sigma[sel][o], fmt="o", color=c, ms=4,
+                        label=f"{Tc:g} C, {Fc:.3g} N/m")
+            if truth is not None:
+                ax.plot(data.rpm[sel][o], truth[sel][o], "-", color=c, lw=1, alpha=0.5)
+            ax.plot(data.rpm[sel][o], fit.torque0[sel][o], ":", color=c)
+            ax.plot(data.rpm[sel][o], fit.torque[sel][o], "--", color=c)
+        ax.set_xscale("log")
+        if np.all(data.torque > 0):
+            ax.set_yscale("log")
+        ax.set_xlabel("shaft speed (rpm)")
+        ax.set_title(f"{label}: start (dotted), fitted (dashed)" + (", truth (thin)" if truth is not None else ""),
+                     fontsize=9)
+    axes[0, 0].set_ylabel("friction torque (N m/m)")
+    axes[0, 0].legend(fontsize=7)
+    return _save(fig, path)
+
+
+def moduli(curves, path=None, bands=()):
+    """Storage and loss moduli (Pa) at the shift law's reference temperature for
+    ``curves`` = [(Material, label, matplotlib style)], over 1e-8..1e6 rad/s; ``bands``:
+    (low, high) reduced-frequency ranges to shade (e.g. what a torque data set probes)."""
+    w = np.logspace(-8, 6, 300)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for mat, label, style in curves:
+        E = np.asarray(mat.modulus(w))
+        axes[0].loglog(w, E.real, style, label=label)
+        axes[1].loglog(w, E.imag, style, label=label)
+    for ax in axes:
+        for lo, hi in bands:
+            ax.axvspan(lo, hi, color="0.9", zorder=0)
+        ax.set_xlabel("reduced angular frequency (rad/s)")
+    axes[0].set_ylabel("E' (Pa)")
+    axes[1].set_ylabel("E'' (Pa)")
+    axes[0].legend(fontsize=8)
+    axes[0].set_title("storage modulus" + (" (grey: probed by the torque data)" if bands else ""))
+    axes[1].set_title("loss modulus")
+    return _save(fig, path)

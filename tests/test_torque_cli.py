@@ -1,0 +1,65 @@
+"""vjax-fit-torque: a small pin-joint fit end to end, and its failures on bad input."""
+import json
+
+import jax
+import numpy as np
+import pytest
+
+from fitting import io
+from fitting import torque as ft
+from fitting.torque_cli import main
+from vjax import Arrhenius, Material, WLF
+
+TRUE = Material.prony(1e6, [3e6, 4e6, 2e6], [1e-4, 1e-3, 1e-2], 0.5)
+SHIFT = WLF(8.0, 100.0, 25.0)
+GEOMETRY = ["--scene", "pin", "--R", "0.01", "--R-pin", "0.0099", "--n", "32"]
+
+
+@pytest.fixture
+def files(tmp_path):
+    model = ft.pin_model(R=0.01, R_pin=0.0099, n=32)
+    rpm = np.tile([30.0, 100.0, 300.0], 2)
+    T = np.repeat([30.0, 50.0], 3)
+    load = np.full(6, 1e3)
+    tq, ok = jax.vmap(lambda a, b, c: model(TRUE, SHIFT, a, b, c))(rpm, T, load)
+    assert bool(np.all(ok))
+    data = tmp_path / "torque.csv"
+    ft.write_torque_csv(data, ft.TorqueData(rpm, T, load, np.asarray(tq), 0.02 * np.abs(np.asarray(tq))))
+    start = tmp_path / "start.json"
+    io.save_material(start, Material.prony(1.3e6, [2.2e6, 5.2e6, 1.5e6], [1e-4, 1e-3, 1e-2], 0.5),
+                     WLF(10.0, 80.0, 25.0))
+    return data, start
+
+
+def test_fit_writes_material_table_and_plots(files, tmp_path, capsys):
+    data, start = files
+    out = tmp_path / "refined.json"
+    code = main([str(data), "--material", str(start), "--out", str(out), "--steps", "30", "--polish", "10",
+                 *GEOMETRY])
+    assert code == 0, capsys.readouterr().err
+    text = capsys.readouterr().out
+    chi0, chi1 = (float(v) for v in text.split("chi2 per point ")[1].split(" (")[0].split(" -> "))
+    assert chi1 < 1e-2 * chi0                              # noise-free data: the fit closes the gap
+    mat, shift, _ = io.load_material(out)
+    assert isinstance(shift, WLF) and mat.moduli.shape == (3,)
+    assert set(json.loads(out.read_text())["uncertainty"]["sd_rel"]) == {"E0", "E_1", "E_2", "E_3", "C1", "C2"}
+    params = (tmp_path / "refined_params.csv").read_text().splitlines()
+    assert params[2] == "param,start,fitted,sd_rel,torque_identifies" and len(params) == 3 + 6
+    for name in ("refined_torque.png", "refined_moduli.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    assert not list(tmp_path.glob(".*.tmp")) and not list(tmp_path.glob(".*.png"))
+
+
+def test_bad_inputs_fail_cleanly(files, tmp_path, capsys):
+    data, start = files
+    out = tmp_path / "r.json"
+    assert main([str(data), "--material", str(start), "--out", str(tmp_path / "r.txt")]) == 2
+    assert "--out must name a .json file" in capsys.readouterr().err
+    assert main([str(tmp_path / "missing.csv"), "--material", str(start), "--out", str(out), *GEOMETRY]) == 1
+    assert "missing.csv" in capsys.readouterr().err
+    arr = tmp_path / "arrhenius.json"
+    io.save_material(arr, TRUE, Arrhenius(1e5, 25.0))
+    assert main([str(data), "--material", str(arr), "--out", str(out), *GEOMETRY]) == 1
+    assert "WLF" in capsys.readouterr().err
+    assert main([str(data), "--material", str(start), "--out", str(out), "--steps", "-1"]) == 2
+    assert not out.exists()
