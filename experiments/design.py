@@ -338,7 +338,7 @@ def plot_roller(out, samples, paths, settings):
             if j == 0:
                 ax.set_ylabel("inner raceway radius (mm)")
     fig.colorbar(sc, ax=axes, label="mean friction torque (N m/m)")
-    fig.suptitle("roller design: random samples (o feasible, x infeasible), SLSQP path (.-), optimum (*)",
+    fig.suptitle("roller design: random samples (o feasible, x infeasible), SLSQP path (.-) and end point (*)",
                  fontsize=9)
     _common.save_figure(fig, out / "design_roller.png")
 

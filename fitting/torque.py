@@ -452,7 +452,7 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     compile_time = time.perf_counter() - t0
     r, r_t, tq0, ok = aux
     loss0 = float(jnp.sum(r ** 2) / Nt)
-    sched = optax.cosine_decay_schedule(lr, steps, alpha=lr_end / lr)
+    sched = optax.cosine_decay_schedule(lr, max(steps, 1), alpha=lr_end / lr)
     opt = optax.adam(sched)
     x = jnp.asarray(x0)
     state = opt.init(x)
