@@ -4,6 +4,8 @@ import math
 import sys
 from pathlib import Path
 
+import pytest
+
 try:
     import experiments  # noqa: F401  (top-level folder, not installed: needs the repo root on sys.path)
 except ImportError:  # plain `pytest` puts tests/ on sys.path, `python -m pytest` the working dir
@@ -60,3 +62,30 @@ def test_common_helpers(tmp_path):
     first, median = _common.time_fn(lambda x: x + 1, 1.0, repeats=3)
     assert first >= 0 and median >= 0
     assert "-" in _common.format_table(["h"], [[float("nan")]])
+
+
+def test_roller_design_quick(tmp_path):
+    """The gradient-vs-random-search design script runs end to end (one material, Z = 10,
+    n = 128) and both methods use the same number of solver calls."""
+    pytest.importorskip("scipy")
+    from experiments import design
+    result = design.main(out_dir=tmp_path, quick=True, only="roller")
+    gradient, random = result["roller"]
+    assert gradient[1] == random[1] >= 2
+    header, values = _numeric_cells(tmp_path / "design_roller_history.csv")
+    assert header[:3] == ["method", "material", "Z"] and all(math.isfinite(v) for v in values)
+    assert (tmp_path / "design_roller.png").stat().st_size > 10_000
+    assert "roller bearing design" in (tmp_path / "design_summary_roller.txt").read_text()
+
+
+def test_torque_twin_quick(tmp_path):
+    """The twin experiment writes its data, tables, refined material and plots, and both fits
+    lower the torque misfit."""
+    from experiments import torque_twin
+    res = torque_twin.main(out_dir=tmp_path, quick=True, steps=10)
+    for row in res["summary"]:
+        assert row[2] < row[1]                     # chi2 fitted < chi2 start
+    assert all(r[3] < 1e-5 for r in res["gradient_check"])
+    for suffix in ("data.csv", "params.csv", "summary.csv", "refined.json", "truth.json", "torque.png",
+                   "moduli.png", "loss.png", "summary.txt"):
+        assert (tmp_path / f"torque_twin_roller_{suffix}").exists(), suffix
