@@ -393,11 +393,9 @@ CAUSES = [
      "difference of O(R) numbers (error ~1e-17 R) while the deformation is ~1e-7 R: the relative residual "
      "stalls near 1e-9 > tol 1e-10. Values and gradients are finite; a cancellation-free overlap (pin.py) "
      "would fix it"),
-    (("pin", "F~=10"), "cause: the first Newton step moves the pin by more than its radius (e > R'), "
-     "sqrt(R'^2 - e^2 sin^2) is NaN in pin._pin_interference: values NaN, residual NaN, converged False "
-     "(throw=True raises ConvergenceError). Needs a guarded overlap / step cap in pin.py"),
-    (("pin", "dR=0.5 R"), "cause: the initial offset e0 = dR + load/(2 E0) exceeds R' (= R/2), so the overlap "
-     "is NaN from the first iteration (pin.py start guess; clamp e0 below R')"),
+    (("pin", "F~=10"), "cause: a load of 10 E0 R is far beyond what the contact can carry at this "
+     "clearance: Newton's first step moves the pin past its radius (e > R'); the guarded overlap keeps "
+     "values and gradients finite and the failure is reported (throw=True raises ConvergenceError)"),
     (("roller", "one loaded roller"), "cause: round-off floor of the roller/ring overlap at a tiny load "
      "(deformation ~1e-9 m against radii ~1e-3 m): residual ~1e-9 > tol 1e-10; loads are right"),
     (("roller", "Einf/E0=1e4"), "cause: same round-off floor (glassy modulus 1e10 Pa, deformation ~1e-10 m)"),
@@ -405,8 +403,8 @@ CAUSES = [
      "below 1e-3) before reaching the target speed; reported, no NaN"),
     (("journal", "HS soft liner"), "cause: film/deformation ~2e-5: continuation exhausts its 40 stages "
      "(a larger stages= was not tried); reported, no NaN"),
-    (("pin", ""), "float32: the default SolverOptions.tol = 1e-10 is below float32 round-off (journal uses "
-     "1e-4 in float32); the values agree with float64 to the quoted relative difference"),
+    (("pin", ""), "float32: the round-off floor of the overlap (see F~=1e-07 in float64) is 1e9 times "
+     "higher; the values agree with float64 to the quoted relative difference"),
     (("roller", ""), "float32: the default tol = 1e-10 is below float32 round-off; values agree with "
      "float64 to the quoted relative difference"),
 ]
