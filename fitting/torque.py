@@ -40,8 +40,8 @@ rate for every parameter, whatever its scale, and it is robust far from the opti
 a Gauss-Newton model of a nearly singular J^T J (exactly what the torque data give, see the
 identifiability report) is poor. Near the optimum Adam crawls along the valley; a few
 Marquardt-scaled Levenberg-Marquardt steps on the same Jacobian then reach the noise floor
-(roller twin: chi^2 per point 1.42 after 400 Adam steps, see the README for the polished
-value). optax rather than jaxopt: jaxopt is unmaintained. The Jacobian (forward mode through the
+(noise-free pin data in the tests: loss 0.70 after 40 Adam steps, 6e-26 after 20 more LM
+steps). optax rather than jaxopt: jaxopt is unmaintained. The Jacobian (forward mode through the
 implicit derivatives, one compiled function that returns residuals and Jacobian together)
 gives both the gradient 2 J^T r / N_t and, at the end, the Gauss-Newton covariance
 (J^T J)^-1 and the singular values that say which parameters the torque cannot identify.
