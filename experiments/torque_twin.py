@@ -57,10 +57,10 @@ def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0
 
 def _scene(name, quick):
     from fitting import torque as ft
-    # (model, length scale of F~, patch speed per shaft speed)
-    if name == "roller":
-        return ft.roller_model(n=128 if quick else 256), 6e-3, 4e-3 / (4e-3 + 6e-3)
-    return ft.pin_model(n=64 if quick else 128), 0.01, 0.0099 / (0.01 - 0.0099)
+    # (model, length scale of F~, (lowest, highest) patch speed per shaft speed)
+    if name == "roller":   # relative to the outer ring R_I/(R_I+R_O), to the inner R_O/(R_I+R_O)
+        return ft.roller_model(n=128 if quick else 256), 6e-3, (0.4, 0.6)
+    return ft.pin_model(n=64 if quick else 128), 0.01, (0.0099 / (0.01 - 0.0099),) * 2
 
 
 def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", steps=None) -> dict:
@@ -181,7 +181,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", 
     bands = []
     for Tc in (40.0, 70.0):
         aT = 10 ** float(true_shift.log10_aT(Tc))
-        bands.append((aT * speeds.min() * 2 * np.pi / 60 * patch, aT * speeds.max() * 2 * np.pi / 60 * patch * 10))
+        bands.append((aT * speeds.min() * 2 * np.pi / 60 * patch[0], aT * speeds.max() * 2 * np.pi / 60 * patch[1] * 10))
     plots.moduli([(true_mat, "truth", "k-"), (start_mat, "start", "k:"),
                   (results["torque only"].material, "torque only", "C1--"), (best.material, "torque + DMA", "C2-.")],
                  out / f"{stem}_moduli.png", bands=bands)
@@ -191,7 +191,7 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", 
         h = np.asarray(fit.history)
         ax.semilogy(h[:, 0], h[:, 1], label=label)
     ax.axhline(chi_true, color="k", lw=0.8, ls=":", label="true material (torque part)")
-    ax.set_xlabel("Adam iteration")
+    ax.set_xlabel("iteration (Adam, then Levenberg-Marquardt)")
     ax.set_ylabel("loss")
     ax.legend()
     _common.save_figure(fig, out / f"{stem}_loss.png")

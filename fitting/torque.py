@@ -458,25 +458,32 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     state = opt.init(x)
     history = []
     t_start = time.perf_counter()
-    it = 0
-    best = (loss0, x, J, aux)
-    for it in range(1, steps + 1):
+
+    def loss_grad(J, aux):
         r = aux[0]
-        loss = float(jnp.sum(r ** 2) / Nt)
-        g = 2.0 * (J.T @ r) / Nt
+        return float(jnp.sum(r ** 2) / Nt), 2.0 * (J.T @ r) / Nt
+
+    def usable(loss, aux):           # finite, and every bearing solve converged
+        return np.isfinite(loss) and bool(np.all(np.asarray(aux[3])))
+
+    if not usable(loss0, aux):
+        raise ValueError(f"the bearing solves do not converge at the start material ({getattr(model, 'scene', '')})"
+                         "; check the geometry, loads and material")
+    best = (loss0, x, J, aux)
+    for it in range(steps + 1):
+        loss, g = loss_grad(J, aux)
         gn = float(jnp.linalg.norm(g))
-        history.append((it - 1, loss, gn, time.perf_counter() - t_start))
-        if progress and ((it - 1) % every == 0):
-            print(f"  iter {it - 1:4d}  loss {loss:.6g}  |grad| {gn:.3e}  {time.perf_counter() - t_start:7.1f} s",
+        history.append((it, loss, gn, time.perf_counter() - t_start))
+        if usable(loss, aux) and loss < best[0]:
+            best = (loss, x, J, aux)
+        if progress and (it % every == 0 or it == steps):
+            print(f"  iter {it:4d}  loss {loss:.6g}  |grad| {gn:.3e}  {time.perf_counter() - t_start:7.1f} s",
                   file=log, flush=True)
-        if not np.isfinite(loss) or gn < gtol:
+        if it == steps or not np.isfinite(loss) or gn < gtol:
             break
         upd, state = opt.update(g, state, x)
         x = optax.apply_updates(x, upd)
         J, aux = jac_fn(x)
-        new_loss = float(jnp.sum(aux[0] ** 2) / Nt)
-        if np.isfinite(new_loss) and new_loss < best[0]:
-            best = (new_loss, x, J, aux)
     loss, x, J, aux = best
     # Levenberg-Marquardt from Adam's best point, on the Jacobian Adam already uses: Adam
     # crawls once the loss is a narrow valley; Gauss-Newton steps reach the noise floor.
@@ -484,17 +491,20 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     for _ in range(polish):
         Jn, r = np.asarray(J, float), np.asarray(aux[0], float)
         H, g = Jn.T @ Jn, Jn.T @ r
+        if np.linalg.norm(2.0 * g / Nt) < gtol:
+            break
         # Marquardt scaling, floored: a parameter the torque hardly sees would otherwise get
         # no damping and wander along the null directions of J (loss unchanged, values wild)
         d = np.maximum(np.diag(H), 1e-4 * np.max(np.diag(H)) + 1e-300)
         step = -np.linalg.solve(H + lam * np.diag(d), g)
         J_new, aux_new = jac_fn(x + step)
-        new_loss = float(jnp.sum(aux_new[0] ** 2) / Nt)
-        it += 1
-        if np.isfinite(new_loss) and new_loss < loss:
-            done = loss - new_loss < 1e-6 * loss
+        it += 1                                          # one more evaluation of every solve
+        new_loss, g_new = loss_grad(J_new, aux_new)
+        if usable(new_loss, aux_new) and new_loss < loss:
+            # stop once a nearly Gauss-Newton step no longer gains
+            done = loss - new_loss < 1e-6 * loss and lam < 1.0
             loss, x, J, aux, lam = new_loss, x + step, J_new, aux_new, max(lam / 3, 1e-9)
-            history.append((it, loss, float(np.linalg.norm(2.0 * Jn.T @ r / Nt)), time.perf_counter() - t_start))
+            history.append((it, loss, float(jnp.linalg.norm(g_new)), time.perf_counter() - t_start))
             if progress:
                 print(f"  LM   {it:4d}  loss {loss:.6g}  lambda {lam:.1e}  {time.perf_counter() - t_start:7.1f} s",
                       file=log, flush=True)
@@ -505,7 +515,6 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
             if lam > 1e10:
                 break
     r, r_t, tq, ok = aux
-    history.append((it, loss, float(jnp.linalg.norm(2.0 * (J.T @ r) / Nt)), time.perf_counter() - t_start))
     if progress:
         print(f"  best  loss {loss:.6g} (start {loss0:.6g}) after {it} iterations, "
               f"{time.perf_counter() - t_start:.1f} s", file=log, flush=True)

@@ -2,7 +2,8 @@
 against measured bearing friction torque.
 
 DATA.csv: torque-versus-speed curves (format in :mod:`fitting.torque`). The start material
-(a ``vjax-fit`` JSON: Prony series with a WLF shift law) is refined by gradients through
+(a ``vjax-fit`` JSON: Prony series with a WLF shift law; shear moduli are converted to
+E = 2 (1 + nu) G, as are shear DMA files) is refined by gradients through
 the bearing solves (:func:`fitting.torque.fit_torque`: Adam, then Levenberg-Marquardt),
 optionally with the misfit to DMA files as a second term so it stays consistent with them.
 Progress (iteration, loss, gradient norm) goes to stderr. Writes the refined material JSON
@@ -36,13 +37,13 @@ def _parser():
     g.add_argument("--R-inner", type=float, default=4e-3, help="inner raceway radius (default 4e-3)")
     g.add_argument("--roller-diameter", type=float, default=2e-3, help="roller diameter (default 2e-3)")
     g.add_argument("--rollers", type=int, default=9, help="number of rollers (default 9)")
-    g.add_argument("--clearance", type=float, default=None, help="diametral clearance (default from the radii)")
+    g.add_argument("--clearance", type=float, default=None, help="diametral clearance (default from the radii); a preload is negative: --clearance=-5e-6")
     g = p.add_argument_group("pin joint geometry (m)")
     g.add_argument("--R", type=float, default=0.01, help="hole radius (default 0.01)")
     g.add_argument("--R-pin", type=float, default=0.0099, help="pin radius (default 0.0099)")
     p.add_argument("--n", type=int, default=None, help="elements per ring (default 256 roller, 128 pin)")
     p.add_argument("--dma", nargs="+", default=None, metavar="FILE", help="DMA files for the consistency term")
-    p.add_argument("--w-dma", type=float, default=0.1, help="weight of the DMA term (default 0.1)")
+    p.add_argument("--w-dma", type=float, default=0.1, help="weight of the DMA term with --dma (default 0.1)")
     p.add_argument("--rel-scatter", type=float, default=0.05,
                    help="torque scatter relative to the torque when the CSV has none (default 0.05)")
     p.add_argument("--steps", type=int, default=200, help="Adam iterations (default 200)")
@@ -61,6 +62,37 @@ def _model(args):
     return ft.pin_model(args.R, args.R_pin, n=args.n or 128)
 
 
+def _check_args(args):
+    """The first problem with the numeric arguments, or None."""
+    for name in ("steps", "polish"):
+        if getattr(args, name) < 0:
+            return f"--{name} must be >= 0, got {getattr(args, name)}"
+    for name in ("lr", "rel_scatter", "R_outer", "R_inner", "roller_diameter", "R", "R_pin"):
+        v = getattr(args, name)
+        if not (v > 0 and v < float("inf")):
+            return f"--{name.replace('_', '-')} must be a finite number > 0, got {v}"
+    if not args.w_dma >= 0:
+        return f"--w-dma must be >= 0, got {args.w_dma}"
+    if args.n is not None and args.n < 16:
+        return f"--n must be an integer >= 16, got {args.n}"
+    if args.rollers < 2:
+        return f"--rollers must be >= 2, got {args.rollers}"
+    return None
+
+
+def _tensile(material, modulus, table):
+    """E = 2 (1 + nu) G for a shear start material and a shear DMA table: the bearing scenes
+    and the DMA term work with E."""
+    import dataclasses
+    from vjax import Material
+    f = 2.0 * (1.0 + float(material.nu))
+    if modulus == "G":
+        material = Material.prony(float(material.E0) * f, material.moduli * f, material.times, material.nu)
+    if table is not None and table.kind == "G":
+        table = dataclasses.replace(table, storage=table.storage * f, loss=table.loss * f, kind="E")
+    return material, table
+
+
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
     args = _parser().parse_args(argv)
@@ -68,10 +100,10 @@ def main(argv=None) -> int:
     if not out.lower().endswith(".json"):
         print(f"vjax-fit-torque: error: --out must name a .json file, got {args.out!r}", file=sys.stderr)
         return 2
-    for name in ("steps", "polish"):
-        if getattr(args, name) < 0:
-            print(f"vjax-fit-torque: error: --{name} must be >= 0", file=sys.stderr)
-            return 2
+    problem = _check_args(args)
+    if problem:
+        print(f"vjax-fit-torque: error: {problem}", file=sys.stderr)
+        return 2
     if not os.path.isdir(os.path.dirname(out)):
         print(f"vjax-fit-torque: error: output directory {os.path.dirname(out)!r} does not exist", file=sys.stderr)
         return 1
@@ -81,39 +113,47 @@ def main(argv=None) -> int:
     from . import io, plots
     from . import torque as ft
 
+    written = []
     try:
         data = ft.read_torque_csv(args.data)
-        material, shift, _ = io.load_material(args.material)
-        model = _model(args)
+        material, shift, modulus = io.load_material(args.material)
         table = None
         if args.dma:
             from . import dma
             table = dma.read(args.dma)
+        material, table = _tensile(material, modulus, table)
+        model = _model(args)
         fit = ft.fit_torque(data, material, shift, model, dma_table=table, w_dma=args.w_dma if table else 0.0,
                             rel_scatter=args.rel_scatter, fit_times=args.fit_times, steps=args.steps, lr=args.lr,
                             polish=args.polish)
         if not fit.converged:
-            raise ValueError("some bearing solves did not converge at the fitted material; nothing written "
-                             "(try fewer --steps, a smaller --lr or a larger --n)")
+            raise ValueError(f"some bearing solves did not converge at the fitted material ({model.scene}); "
+                             "nothing written. Check the geometry, loads and start material; a smaller --lr "
+                             "or a finer --n may help")
         stem = os.path.splitext(out)[0]
-        sd = {n: float(s) for n, s in zip(fit.names, fit.sd)}
-        io.save_material(out, fit.material, fit.shift, uncertainty={"sd_rel": sd},
-                         fit={"scene": model.scene, "data": os.path.abspath(args.data), "loss": fit.loss,
-                              "loss_start": fit.loss0, "iterations": fit.iterations})
         rows = [[name, before, after, s, "yes" if fit.ident["sd"][name] < 0.1 else "no"]
                 for name, before, after, s in fit.table()]
-        lines = ["# parameters before/after; sd_rel: Gauss-Newton standard deviation of the log-parameter",
-                 "# torque_identifies: determined to < 10% by the torque alone (singular values of its Jacobian)",
-                 "param,start,fitted,sd_rel,torque_identifies"]
-        lines += [f"{n},{b:.10g},{a:.10g},{s:.4g},{i}" for n, b, a, s, i in rows]
-        io.atomic_write(stem + "_params.csv", "\n".join(lines) + "\n")
-        written = [out, stem + "_params.csv"]
         if not args.no_plots:
             sigma = data.sigma(args.rel_scatter)
             written.append(plots.torque_fit(data, {"fit": fit}, sigma, stem + "_torque.png"))
             written.append(plots.moduli([(material, "start", "k:"), (fit.material, "fitted", "C2-")],
                                         stem + "_moduli.png"))
-    except (ValueError, OSError) as e:
+        lines = ["# parameters before/after; sd_rel: Gauss-Newton standard deviation of the log-parameter",
+                 "# torque_identifies: determined to < 10% by the torque alone (singular values of its Jacobian)",
+                 "param,start,fitted,sd_rel,torque_identifies"]
+        lines += [f"{n},{b:.10g},{a:.10g},{s:.4g},{i}" for n, b, a, s, i in rows]
+        io.atomic_write(stem + "_params.csv", "\n".join(lines) + "\n")
+        written.append(stem + "_params.csv")
+        # the material last: it exists only if everything else was written
+        sd = {n: float(s) for n, s in zip(fit.names, fit.sd)}
+        io.save_material(out, fit.material, fit.shift, uncertainty={"sd_rel": sd},
+                         fit={"scene": model.scene, "data": os.path.abspath(args.data), "loss": fit.loss,
+                              "loss_start": fit.loss0, "iterations": fit.iterations})
+        written.insert(0, out)
+    except (ValueError, OSError, np.linalg.LinAlgError) as e:
+        for path in written:          # no partial set of outputs
+            if os.path.exists(path):
+                os.unlink(path)
         print(f"vjax-fit-torque: error: {e}", file=sys.stderr)
         return 1
     chi0 = float(np.mean(((fit.torque0 - data.torque) / data.sigma(args.rel_scatter)) ** 2))

@@ -61,5 +61,24 @@ def test_bad_inputs_fail_cleanly(files, tmp_path, capsys):
     io.save_material(arr, TRUE, Arrhenius(1e5, 25.0))
     assert main([str(data), "--material", str(arr), "--out", str(out), *GEOMETRY]) == 1
     assert "WLF" in capsys.readouterr().err
-    assert main([str(data), "--material", str(start), "--out", str(out), "--steps", "-1"]) == 2
+    for bad in (["--steps", "-1"], ["--lr", "0"], ["--rel-scatter", "0"], ["--n", "8"], ["--w-dma", "-1"],
+                ["--R-pin=-0.01"]):
+        assert main([str(data), "--material", str(start), "--out", str(out), *GEOMETRY, *bad]) == 2, bad
+        assert bad[0].split("=")[0] in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_shear_start_material_is_converted_to_tensile(files, tmp_path, capsys):
+    """A vjax-fit --shear JSON (G moduli) starts the fit at E = 2 (1 + nu) G, and the result is E."""
+    data, _ = files
+    start = tmp_path / "shear.json"
+    f = 2 * (1 + 0.5)
+    io.save_material(start, Material.prony(1.3e6 / f, [2.2e6 / f, 5.2e6 / f, 1.5e6 / f], [1e-4, 1e-3, 1e-2], 0.5),
+                     WLF(10.0, 80.0, 25.0), modulus="G")
+    out = tmp_path / "refined.json"
+    code = main([str(data), "--material", str(start), "--out", str(out), "--steps", "30", "--polish", "10",
+                 "--no-plots", *GEOMETRY])
+    assert code == 0, capsys.readouterr().err
+    mat, _, modulus = io.load_material(out)
+    assert modulus == "E"
+    np.testing.assert_allclose(float(mat.E0), float(TRUE.E0), rtol=0.05)
