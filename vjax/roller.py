@@ -236,8 +236,7 @@ def _fields(x, P, cfg, warm=None):
         big = jnp.asarray(10.0, g.dtype) * R
         gmin = jnp.min(jnp.where(cells & hit, g, big), axis=1)
         gmin = jnp.where(F > 0, 0.0, jnp.maximum(gmin, 0.0))
-        out[name] = dict(sol=sol, theta=theta, alpha=alpha, p=p, u=u, d=d, g=g, F=F, gmin=gmin,
-                         args=args, interf=interf, R=R)
+        out[name] = dict(sol=sol, theta=theta, alpha=alpha, p=p, u=u, g=g, F=F, gmin=gmin, R=R)
     geo = dict(rho=rho, rho_i=rho_i, psi_i=psi_i, C=C, eL=eL, e=e, dO=dO,
                dI=R_I + r - rho_i)
     return out, geo
@@ -367,12 +366,10 @@ def _outputs(x, P, cfg, stats):
     eL = geo["eL"]
     perp = jnp.stack([-eL[1], eL[0]])
     forces, torques, thetas, pressures, disps, u_at, g_at = [], [], [], [], [], [], []
-    contact_ok = []
     for name, on, n, R in (("O", cfg.outer, cfg.n_outer, P["R_O"]), ("I", cfg.inner, cfg.n_inner, P["R_I"])):
         if on:
             o = out[name]
             th, p, u = o["theta"], o["p"], o["u"]
-            contact_ok.append(o["sol"].converged)
             # slope u' of the deformed profile, spectral: then R sum p u' is exactly the
             # modal dissipation / patch speed (zero for an elastic ring on any grid). The
             # exact roller slope inside the patches is not: on a grid not symmetric about
