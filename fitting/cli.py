@@ -28,6 +28,19 @@ def _parser():
     return p
 
 
+def output_json(prog, path):
+    """(absolute path, None) for a usable ``--out`` material path, else (path, exit code)
+    after printing why: 2 if it does not name a .json file, 1 if its folder is missing."""
+    out = os.path.abspath(path)
+    if not out.lower().endswith(".json"):
+        print(f"{prog}: error: --out must name a .json file, got {path!r}", file=sys.stderr)
+        return out, 2
+    if not os.path.isdir(os.path.dirname(out)):
+        print(f"{prog}: error: output directory {os.path.dirname(out)!r} does not exist", file=sys.stderr)
+        return out, 1
+    return out, None
+
+
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
     args = _parser().parse_args(argv)
@@ -36,13 +49,9 @@ def main(argv=None) -> int:
     from . import io, plots
     from .calibrate import calibrate
 
-    out = os.path.abspath(args.out)
-    if not out.lower().endswith(".json"):
-        print(f"vjax-fit: error: --out must name a .json file, got {args.out!r}", file=sys.stderr)
-        return 2
-    if not os.path.isdir(os.path.dirname(out)):
-        print(f"vjax-fit: error: output directory {os.path.dirname(out)!r} does not exist", file=sys.stderr)
-        return 1
+    out, code = output_json("vjax-fit", args.out)
+    if code:
+        return code
     try:
         mat, shift, rep = calibrate(args.inputs, args.tref, None, law=args.law, nu=args.nu, kind=args.kind,
                                     tensile=not args.shear, shifts=args.shifts,

@@ -24,6 +24,8 @@ import argparse
 import os
 import sys
 
+from .cli import output_json
+
 
 def _parser():
     p = argparse.ArgumentParser(prog="vjax-fit-torque", description=__doc__.splitlines()[0])
@@ -96,17 +98,13 @@ def _tensile(material, modulus, table):
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
     args = _parser().parse_args(argv)
-    out = os.path.abspath(args.out)
-    if not out.lower().endswith(".json"):
-        print(f"vjax-fit-torque: error: --out must name a .json file, got {args.out!r}", file=sys.stderr)
-        return 2
     problem = _check_args(args)
     if problem:
         print(f"vjax-fit-torque: error: {problem}", file=sys.stderr)
         return 2
-    if not os.path.isdir(os.path.dirname(out)):
-        print(f"vjax-fit-torque: error: output directory {os.path.dirname(out)!r} does not exist", file=sys.stderr)
-        return 1
+    out, code = output_json("vjax-fit-torque", args.out)
+    if code:
+        return code
     import jax
     jax.config.update("jax_enable_x64", True)
     import numpy as np
