@@ -269,12 +269,7 @@ class Params:
         v = jnp.exp(x)
         tau = v[1 + K:1 + 2 * K] if self.fit_times else jnp.asarray(self.times)
         mat = Material(v[0], v[1:1 + K], tau, jnp.asarray(self.nu, v.dtype))
-        # built field by field: the WLF constructor's checks are for concrete user input
-        shift = object.__new__(WLF)
-        object.__setattr__(shift, "C1", v[-2])
-        object.__setattr__(shift, "C2", v[-1])
-        object.__setattr__(shift, "T_ref", jnp.asarray(self.T_ref, v.dtype))
-        return mat, shift
+        return mat, WLF(v[-2], v[-1], jnp.asarray(self.T_ref, v.dtype))
 
     def physical(self, x):
         """(Material, WLF) with concrete, checked values."""

@@ -238,7 +238,24 @@ def _creep_spectrum(mat: Material, iterations: int) -> CreepSpectrum:
 
 
 # ---- time-temperature shift laws ----------------------------------------------------
-@jax.tree_util.register_dataclass
+def _checked_pytree(cls):
+    """Register a frozen dataclass whose ``__init__`` checks user input as a PyTree that JAX
+    rebuilds **without** calling ``__init__``: JAX fills it with tracers, placeholders and
+    cotangents (a gradient with respect to C2 may well be negative), none of them user input."""
+    names = tuple(f.name for f in dataclasses.fields(cls))
+
+    def unflatten(_, leaves):
+        obj = object.__new__(cls)
+        for name, leaf in zip(names, leaves):
+            object.__setattr__(obj, name, leaf)
+        return obj
+
+    jax.tree_util.register_pytree_with_keys(
+        cls, lambda obj: ([(jax.tree_util.GetAttrKey(k), getattr(obj, k)) for k in names], None), unflatten)
+    return cls
+
+
+@_checked_pytree
 @dataclasses.dataclass(frozen=True)
 class WLF:
     """Williams-Landel-Ferry shift: log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref); T in C.
@@ -269,7 +286,7 @@ class WLF:
         return -self.C1 * dT / (self.C2 + dT)
 
 
-@jax.tree_util.register_dataclass
+@_checked_pytree
 @dataclasses.dataclass(frozen=True)
 class Arrhenius:
     """Arrhenius shift: log10 a_T = Ea / (R ln 10) (1/T - 1/T_ref), Ea in J/mol, T in C."""
