@@ -16,19 +16,21 @@ import jax as _jax
 
 from .material import Arrhenius, CreepSpectrum, Material, WLF
 from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
-from . import green
-from ._report import ConvergenceError
-from .contact import ContactSolution, SolverOptions, solve_contact
-from .pin import PinResult, pin_in_hole, pin_patch_speed
-from .journal import JournalSolution, journal_bearing
-from .roller import RollerResult, roller_bearing, roller_patch_speeds
+from . import bodies, green
+from .bodies import Body, disc, half_plane, hole
+from ._solve import ConvergenceError
+from .contact import ContactOptions, ContactSolution, solve_contact
+from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed
+from .journal import JournalOptions, JournalResult, journal_bearing
+from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from .sweep import sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
-           "element_symbol", "grid", "ring_operator", "green", "ConvergenceError", "ContactSolution",
-           "SolverOptions", "solve_contact", "PinResult", "pin_in_hole", "pin_patch_speed",
-           "JournalSolution", "journal_bearing", "RollerResult", "roller_bearing", "roller_patch_speeds",
-           "sweep"]
+           "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole",
+           "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
+           "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed",
+           "JournalOptions", "JournalResult", "journal_bearing",
+           "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "sweep"]
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(

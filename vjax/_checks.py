@@ -70,3 +70,15 @@ def instance(name: str, x, cls, what: str) -> None:
     """``x`` must be an instance of ``cls`` (``what`` describes it in the message)."""
     if not isinstance(x, cls):
         raise ValueError(f"{name} must be {what}, got {type(x).__name__}")
+
+
+def option_number(name: str, x) -> None:
+    """A static option that must be a finite float > 0 (a Python number, not an array)."""
+    if isinstance(x, bool) or not (isinstance(x, (int, float, np.floating)) and np.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be a finite number > 0, got {x!r}")
+
+
+def option_count(name: str, x, minimum: int = 1) -> None:
+    """A static option that must be an integer >= ``minimum``."""
+    if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {x!r}")

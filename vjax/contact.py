@@ -22,9 +22,9 @@ circulant inverse M^-1 (converges in 5-10 Krylov steps independently of N and of
 the size of the contact), then updates A. No dense N x N matrix is formed: each step
 costs O(N log N) per Krylov iteration.
 
-**Derivatives**: ``jax.custom_jvp`` at the solution. The tangent solves the same
-linearized system with the active set frozen (``lax.custom_linear_solve``, so forward
-and reverse mode both work and the reverse pass is one transposed solve). Nothing is
+**Derivatives**: implicit, at the solution (:func:`vjax._solve.implicit_root`): the tangent
+solves the same linearized system with the active set frozen, matrix-free by the bordered
+Krylov solve below (forward and reverse mode; the reverse pass is one transposed solve). Nothing is
 differentiated through the iterations. Where the contact set is about to change the
 derivative is the one-sided derivative of the current set: finite, never NaN.
 
@@ -34,14 +34,10 @@ to the peak pressure, plus the relative force misfit) and ``converged``.
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
-
 import jax
 import jax.numpy as jnp
 import numpy as np
-from jax.scipy.sparse.linalg import bicgstab, gmres
-
-from . import _checks
+from . import _checks, _krylov, _solve
 from ._checks import is_concrete
 from .operator import RingOperator
 
@@ -49,7 +45,9 @@ from .operator import RingOperator
 @jax.tree_util.register_dataclass
 @dataclasses.dataclass(frozen=True)
 class ContactSolution:
-    """Pressure (Pa), displacement (m), rigid-body unknowns q, and convergence information."""
+    """Pressure (Pa), displacement (m), rigid-body unknowns q, the active set, and the solve's
+    report: ``iterations`` (active-set Newton steps), ``residual``, ``result`` (a code of
+    :mod:`vjax._solve`; ``converged`` is ``result == 0``)."""
 
     pressure: jax.Array
     displacement: jax.Array
@@ -57,12 +55,16 @@ class ContactSolution:
     active: jax.Array
     iterations: jax.Array
     residual: jax.Array
-    converged: jax.Array
+    result: jax.Array
+
+    @property
+    def converged(self):
+        return self.result == _solve.SUCCESS
 
 
 @dataclasses.dataclass(frozen=True)
-class SolverOptions:
-    """Static options.
+class ContactOptions:
+    """Static options of a contact solve.
 
     tol: relative residual (complementarity / peak pressure + relative force misfit).
     max_iter: active-set (semismooth Newton) iterations. krylov: iteration cap of each
@@ -79,14 +81,10 @@ class SolverOptions:
     krylov_method: str = "bicgstab"
 
     def __post_init__(self):
-        for name in ("tol", "krylov_tol"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float, np.floating)) and np.isfinite(v) and v > 0):
-                raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
-        for name in ("max_iter", "krylov"):
-            v = getattr(self, name)
-            if not isinstance(v, (int, np.integer)) or isinstance(v, bool) or v < 1:
-                raise ValueError(f"{name} must be an integer >= 1, got {v!r}")
+        _checks.option_number("tol", self.tol)
+        _checks.option_number("krylov_tol", self.krylov_tol)
+        _checks.option_count("max_iter", self.max_iter)
+        _checks.option_count("krylov", self.krylov)
         _checks.one_of("krylov_method", self.krylov_method, ("bicgstab", "gmres"))
 
 
@@ -104,7 +102,11 @@ def _inverse(op: RingOperator) -> RingOperator:
 
 
 def _restricted_solve(op, inv, active, rhs, opts):
-    """Solve M_AA x_A = rhs_A (x = 0 off A) for one or several right-hand sides (last axis N)."""
+    """Solve M_AA x_A = rhs_A (x = 0 off A) for one or several right-hand sides (last axis N).
+
+    Returns the solutions and the largest relative residual of the Krylov solves."""
+    krylov = _krylov.gmres if opts.krylov_method == "gmres" else _krylov.bicgstab
+
     def matvec(x):
         return jnp.where(active, op(jnp.where(active, x, 0.0)), x)
 
@@ -112,18 +114,13 @@ def _restricted_solve(op, inv, active, rhs, opts):
         return jnp.where(active, inv(jnp.where(active, x, 0.0)), x)
 
     def one(b):
-        b = jnp.where(active, b, 0.0)
-        # BiCGSTAB breaks down (0/0) on b = 0: solve for b/|b| and scale back.
-        norm = jnp.linalg.norm(b)
-        safe = jnp.where(norm > 0, norm, 1.0)
-        if opts.krylov_method == "gmres":
-            x, _ = gmres(matvec, b / safe, M=precond, tol=opts.krylov_tol, atol=0.0, restart=20,
-                         maxiter=max(opts.krylov // 20, 2), solve_method="incremental")
-        else:
-            x, _ = bicgstab(matvec, b / safe, M=precond, tol=opts.krylov_tol, atol=0.0, maxiter=opts.krylov)
-        return jnp.where(active & (norm > 0), x * safe, 0.0)
+        x, rel = krylov(matvec, jnp.where(active, b, 0.0), precond, opts.krylov_tol, opts.krylov)
+        return jnp.where(active, x, 0.0), rel
 
-    return jax.vmap(one)(rhs) if rhs.ndim == 2 else one(rhs)
+    if rhs.ndim == 1:
+        return one(rhs)
+    x, rel = jax.vmap(one)(rhs)
+    return x, jnp.max(rel)
 
 
 def _bordered_solve(op, inv, active, J, W, b_sigma, b_q, opts):
@@ -131,16 +128,18 @@ def _bordered_solve(op, inv, active, J, W, b_sigma, b_q, opts):
 
     The inactive part is known; the active part is y0 + Y q with M_AA y0 and M_AA Y
     (k + 1 restricted solves), and q follows from the k x k system (W Y) q = ...
+    Returns (s, q, largest relative Krylov residual).
     """
     s_off = jnp.where(active, 0.0, b_sigma)
     rhs0 = b_sigma - op(s_off)
     k = W.shape[0]
     if k == 0:
-        return s_off + _restricted_solve(op, inv, active, rhs0, opts), jnp.zeros((0,), b_sigma.dtype)
-    sols = _restricted_solve(op, inv, active, jnp.concatenate([rhs0[None], J.T], axis=0), opts)
+        y0, rel = _restricted_solve(op, inv, active, rhs0, opts)
+        return s_off + y0, jnp.zeros((0,), b_sigma.dtype), rel
+    sols, rel = _restricted_solve(op, inv, active, jnp.concatenate([rhs0[None], J.T], axis=0), opts)
     y0, Y = sols[0], sols[1:]            # Y: (k, N)
     q = jnp.linalg.solve(W @ Y.T, b_q - W @ s_off - W @ y0)
-    return s_off + y0 + q @ Y, q
+    return s_off + y0 + q @ Y, q, rel
 
 
 def _bordered_transpose_solve(op, inv, active, J, W, c_sigma, c_q, opts):
@@ -148,9 +147,9 @@ def _bordered_transpose_solve(op, inv, active, J, W, c_sigma, c_q, opts):
     opT, invT = _transpose(op), _transpose(inv)
     k = W.shape[0]
     if k == 0:
-        lam_a = _restricted_solve(opT, invT, active, c_sigma, opts)
+        lam_a, _ = _restricted_solve(opT, invT, active, c_sigma, opts)
         return jnp.where(active, lam_a, c_sigma - opT(lam_a)), jnp.zeros((0,), c_sigma.dtype)
-    sols = _restricted_solve(opT, invT, active, jnp.concatenate([c_sigma[None], W], axis=0), opts)
+    sols, _ = _restricted_solve(opT, invT, active, jnp.concatenate([c_sigma[None], W], axis=0), opts)
     z0, Z = sols[0], sols[1:]
     JA = jnp.where(active[:, None], J, 0.0)
     mu = jnp.linalg.solve(JA.T @ Z.T, c_q + JA.T @ z0)
@@ -173,8 +172,8 @@ def _force_rows(force, op, args, sigma):
     return jax.jacrev(lambda s: force(s, op(s), args))(sigma)
 
 
-def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
-    """Primal-dual active-set iteration with Newton on q. Returns a ContactSolution."""
+def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init):
+    """Primal-dual active-set iteration with Newton on q: (sigma, q), (active set, Stats)."""
     inv = _inverse(op)
     c = _scale(op)
     k = q0.shape[0]
@@ -198,7 +197,7 @@ def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
         return act
 
     def body(state):
-        sigma, q, u, act, it, _ = state
+        sigma, q, u, act, it, _, _ = state
         d, J = d_of(q), jac_of(q)
         # Newton step on the current set, solved as a correction of (sigma, q) so that the
         # inner solver's error does not set a floor on the residual (iterative refinement):
@@ -209,78 +208,70 @@ def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init=None):
             r_q = F - force(sigma, u, args)
         else:
             W, r_q = jnp.zeros((0, sigma.shape[0]), sigma.dtype), jnp.zeros((0,), sigma.dtype)
-        ds, dq = _bordered_solve(op, inv, act, J, W, r_sigma, r_q, opts)
+        ds, dq, inner = _bordered_solve(op, inv, act, J, W, r_sigma, r_q, opts)
         sigma_new, q_new = sigma + ds, q + dq
         u_new = op(sigma_new)
         return (sigma_new, q_new, u_new, active_set(sigma_new, q_new, u_new), it + 1,
-                residual(sigma_new, q_new, u_new))
+                residual(sigma_new, q_new, u_new), inner)
 
     def cond(state):
         # The residual certifies the solution by itself: a zero-pressure edge element that
         # still flips in or out of the set does not keep the loop going.
-        *_, it, res = state
-        return (res > tol) & (it < opts.max_iter)
+        *_, it, res, _ = state
+        return (res > tol) & (it < opts.max_iter) & ~jnp.isnan(res)
 
-    if sigma_init is None:
-        sigma0 = jnp.zeros(op.n, dtype=q0.dtype)
-        u0 = jnp.zeros_like(sigma0)
-    else:  # warm start: the first active set follows from the given pressure
-        sigma0 = sigma_init.astype(q0.dtype)
-        u0 = op(sigma0)
-    init = (sigma0, q0, u0, active_set(sigma0, q0, u0), jnp.asarray(0), jnp.asarray(jnp.inf, q0.dtype))
-    sigma, q, u, _, it, res = jax.lax.while_loop(cond, body, init)
+    sigma0 = sigma_init.astype(q0.dtype)  # zeros for a cold start
+    u0 = op(sigma0)
+    inf = jnp.asarray(jnp.inf, q0.dtype)
+    init = (sigma0, q0, u0, active_set(sigma0, q0, u0), jnp.asarray(0), inf, jnp.zeros((), q0.dtype))
+    sigma, q, u, _, it, res, inner = jax.lax.while_loop(cond, body, init)
+    # an inner solve that missed its tolerance by far explains an outer failure
+    result = jnp.where(res <= tol, _solve.SUCCESS, jnp.where(
+        ~jnp.isfinite(res), _solve.NONFINITE, jnp.where(
+            inner > jnp.sqrt(opts.krylov_tol), _solve.INNER_FAILED, _solve.MAX_ITERATIONS)))
     # the active set of the derivative: the set of the converged solution
-    return ContactSolution(sigma, u, q, active_set(sigma, q, u), it, res, res <= tol)
+    return jnp.concatenate([sigma, q]), (active_set(sigma, q, u), _solve.Stats(it, res, result))
 
 
-@partial(jax.custom_jvp, nondiff_argnums=(1, 2, 6))
-def _solve(op, interference, force, args, q0, F, opts, sigma_init=None):
-    return _solve_forward(op, interference, force, args, q0, F, opts, sigma_init)
+def _solve_implicit(op, interference, force, args, q0, F, opts, sigma_init):
+    """The forward solve with implicit derivatives of (sigma, q) in (op, args, F)."""
+    n, k = op.n, q0.shape[0]
 
-
-@_solve.defjvp
-def _solve_jvp(interference, force, opts, primals, tangents):
-    op, args, q0, F, sigma_init = primals      # the warm start gets no derivative
-    dop, dargs, _, dF, _ = tangents
-    sol = _solve(op, interference, force, args, q0, F, opts, sigma_init)
-    sigma, q, act = sol.pressure, sol.q, sol.active
-    n, k = sigma.shape[0], q.shape[0]
-
-    def r_params(op_, args_, F_):
-        # the (frozen-set) optimality system as a function of the parameters
+    def residual(x, aux, params):
+        """The optimality system on the frozen active set: zero at the solution."""
+        op_, args_, F_ = params[:3]
+        sigma, q = x[:n], x[n:]
+        act = aux[0]
         r_s = jnp.where(act, op_(sigma) - interference(q, args_), sigma)
-        return r_s, force(sigma, op_(sigma), args_) - F_
+        return jnp.concatenate([r_s, force(sigma, op_(sigma), args_) - F_])
 
-    _, (b_s, b_q) = jax.jvp(r_params, (op, args, F), (dop, dargs, dF))
-    if k:
-        J = jax.jacfwd(lambda qq: interference(qq, args))(q)
-        W = _force_rows(force, op, args, sigma)
-    else:
-        J, W = jnp.zeros((n, 0), sigma.dtype), jnp.zeros((0, n), sigma.dtype)
-    inv = _inverse(op)
+    def linear_solver(x, aux, params):
+        op_, args_ = params[:2]
+        sigma, q, act = x[:n], x[n:], aux[0]
+        if k:
+            J = jax.jacfwd(lambda qq: interference(qq, args_))(q)
+            W = _force_rows(force, op_, args_, sigma)
+        else:
+            J, W = jnp.zeros((n, 0), sigma.dtype), jnp.zeros((0, n), sigma.dtype)
+        inv = _inverse(op_)
+        forward = lambda b: jnp.concatenate(_bordered_solve(op_, inv, act, J, W, b[:n], b[n:], opts)[:2])
+        transpose = lambda b: jnp.concatenate(_bordered_transpose_solve(op_, inv, act, J, W, b[:n], b[n:], opts))
+        return forward, transpose
 
-    # One flat vector (sigma, q): custom_linear_solve's transpose needs every part of b linear.
-    def matvec(v):
-        s, qq = v[:n], v[n:]
-        return jnp.concatenate([jnp.where(act, op(s) - J @ qq, s), W @ s])
+    # The starting point travels with the parameters (the residual ignores it), so that
+    # the custom derivative closes over no traced value; it gets no derivative.
+    def solver(params):
+        op_, args_, F_, q_start, s_start = params
+        return _solve_forward(op_, interference, force, args_, q_start, F_, opts, s_start)
 
-    def solve(_, b):
-        return jnp.concatenate(_bordered_solve(op, inv, act, J, W, b[:n], b[n:], opts))
-
-    def transpose_solve(_, c):
-        return jnp.concatenate(_bordered_transpose_solve(op, inv, act, J, W, c[:n], c[n:], opts))
-
-    v = jax.lax.custom_linear_solve(matvec, -jnp.concatenate([b_s, b_q]), solve, transpose_solve)
-    ds, dq = v[:n], v[n:]
-    du = op(ds) + jax.jvp(lambda o: o(sigma), (op,), (dop,))[1]
-    f0 = lambda x: np.zeros(np.shape(x), dtype=jax.dtypes.float0)  # tangents of int/bool fields
-    tangent = ContactSolution(ds, du, dq, f0(act), f0(sol.iterations), jnp.zeros_like(sol.residual),
-                              f0(sol.converged))
-    return sol, tangent
+    start = jax.lax.stop_gradient((q0, sigma_init))
+    x, (act, stats) = _solve.implicit_root(solver, residual, linear_solver)((op, args, F, *start))
+    sigma, q = x[:n], x[n:]
+    return ContactSolution(sigma, op(sigma), q, act, stats.iterations, stats.residual, stats.result)
 
 
 def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None, F=None,
-                  options: SolverOptions = SolverOptions(), sigma_init=None) -> ContactSolution:
+                  options: ContactOptions = ContactOptions(), sigma_init=None) -> ContactSolution:
     """Frictionless contact of rigid indenters with a ring.
 
     Args:
@@ -295,16 +286,18 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
       force: ``force(sigma, u, args) -> (k,)`` the resultants that load control imposes
         (any differentiable function of pressure and displacement, e.g. Eq. 2.21 with its
         slope terms). F: (k,) their target values.
-      options: :class:`SolverOptions` (static).
+      options: :class:`ContactOptions` (static).
       sigma_init: optional (N,) starting pressure (Pa), e.g. the solution of a nearby
         problem: a warm start needs fewer active-set iterations. Not differentiated.
         Default None: zero pressure (cold start).
 
-    Returns a :class:`ContactSolution`; ``converged = False`` when the residual is above
-    ``options.tol`` after ``options.max_iter`` iterations (the scenes raise on it).
+    Returns a :class:`ContactSolution`; ``converged`` is False when the residual is above
+    ``options.tol`` after ``options.max_iter`` iterations, and ``result`` says why (an inner
+    Krylov solve that failed is reported as such). It never raises on non-convergence: the
+    scenes decide (``throw=``).
     """
     _checks.instance("op", op, RingOperator, "a vjax.RingOperator (see ring_operator)")
-    _checks.instance("options", options, SolverOptions, "a vjax.SolverOptions")
+    _checks.instance("options", options, ContactOptions, "a vjax.ContactOptions")
     if not callable(interference):
         raise ValueError(f"interference must be a function interference(q, args) -> (N,), got {interference!r}")
     if q0 is not None:
@@ -333,12 +326,11 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
                          f"got {getattr(d, 'shape', d)}")
     if _checks.is_concrete((q0, args)):
         _checks.finite("interference(q0, args)", interference(q0, args))
-    if sigma_init is not None:
-        sigma_init = jax.lax.stop_gradient(jnp.asarray(sigma_init))
-    return _solve(op, interference, force, args, q0, F, options, sigma_init)
+    sigma_init = jnp.zeros(op.n, q0.dtype) if sigma_init is None else jnp.asarray(sigma_init, q0.dtype)
+    return _solve_implicit(op, interference, force, args, q0, F, options, sigma_init)
 
 
-def solve_with_fallback(run, options: SolverOptions):
+def solve_with_fallback(run, options: ContactOptions):
     """``run(options)`` and, if it did not converge with BiCGSTAB, once more with GMRES.
 
     BiCGSTAB can break down (NaN) on an indefinite operator. The retry happens only on

@@ -2,8 +2,8 @@
 
 Geometry and frames
 -------------------
-Bearing bore of radius ``R_bearing`` (centre O), journal of radius R_J = R_bearing -
-``clearance`` (centre O'). The ring grid theta_i = 2 pi i / n is attached to the **line of
+Bearing bore (the ``housing``) of radius ``R`` (centre O), journal (the ``shaft``) of radius
+R_J = R - c with c the ``radial_clearance`` (centre O'). The ring grid theta_i = 2 pi i / n is attached to the **line of
 centres**: theta = 0 points from O towards O' (where the rigid gap is smallest). The load
 line is at absolute angle ``load_angle`` (x axis = 0, counter-clockwise positive); the line
 of centres is at absolute angle ``load_angle + attitude_angle``. Everything is rotationally
@@ -19,28 +19,18 @@ from the film, so both *increase* h. The thesis writes h = h0 + g0 + u_r^B - u_r
 both u_r positive along the outward radius: the same thing (u_J = -u_r^J).
 Deformations are the steady-state viscoelastic ring operators of each body at the speed
 of the pressure pattern relative to it: the pattern is fixed in space, so it moves at
--omega_bearing relative to the bearing (Green's function A.45, hole in a plane) and at
--omega_journal relative to the journal (A.60, cylinder fixed at its centre), or both with
-the half-plane kernel (``green="half_plane"``, the comparison of Fig. 3.4). The log terms'
-reference length ``ref_length`` (default 1 m as in the thesis) sets the n = 1 (rigid
-translation) part of each ring's response: it shifts ``eccentricity`` (which can exceed 1
-with a soft liner) but not ``eccentricity_effective`` (first Fourier mode of h over c).
+-omega_housing relative to the bearing (a bare Material: :func:`~vjax.hole`, A.45) and at
+-omega_shaft relative to the journal (a bare Material: :func:`~vjax.disc`, A.60), or with
+:func:`~vjax.half_plane` bodies (the comparison of Fig. 3.4). A hole's or disc's log
+reference length ``ref_length`` (1 m as in the thesis) sets the n = 1 (rigid translation)
+part of its response: it shifts ``eccentricity`` (which can exceed 1 with a soft liner) but
+not ``eccentricity_effective`` (first Fourier mode of h over c).
 
 Reynolds equation and cavitation (Eq. 3.41)
 -------------------------------------------
-    d/ds (h^3/(12 eta) dp/ds) = v dh/ds,  s = R_B theta,  v = (omega_B R_B + omega_J R_J)/2
-
-discretized by finite volumes on the ring (pressure at the element centres, fluxes
-q = -h^3/(12 eta) dp/ds + v h at the faces with h at a face the mean of its neighbours):
-second order. Cavitation (``cavitation=``):
-
-- ``"reynolds"`` (default): Swift-Stieber / Reynolds conditions (p >= 0, p = dp/ds = 0 at
-  rupture) as the linear complementarity problem p >= 0, w >= 0, p w = 0 with w the net
-  outflow of a cell, written as the Fischer-Burmeister equation
-  p + w - sqrt(p^2 + w^2) = 0 (a semismooth equation: Newton with an AD Jacobian works and
-  the converged solution is differentiable where the cavitated set does not change).
-- ``"half_sommerfeld"``: the full-Sommerfeld pressure with negative values set to zero.
-- ``"sommerfeld"``: full Sommerfeld, negative pressures kept.
+Finite volumes on the ring with ``cavitation`` "reynolds" (default, Swift-Stieber as a
+Fischer-Burmeister complementarity), "half_sommerfeld" or "sommerfeld": :mod:`vjax.reynolds`.
+The entrainment speed is v = (omega_B R_B + omega_J R_J)/2.
 
 **Pressure datum.** A lubricant supply groove at ``supply_angle`` (measured in the
 line-of-centres frame, snapped to the nearest element; default pi, the largest rigid
@@ -59,162 +49,179 @@ this balance (nor in classical theory).
 Torques, dissipation (Eq. 3.43-3.46)
 ------------------------------------
 All torques are exerted **by the fluid on the body**, counter-clockwise positive, N m/m.
+``force`` is the pressure force the film exerts on the housing (absolute x, y; equal to the
+load at equilibrium).
 Shear tractions (3.45) at the faces: tau_B = -h/2 dp/ds - eta (U_B - U_J)/h,
 tau_J = -h/2 dp/ds + eta (U_B - U_J)/h (U = omega R, surface speeds), on the film arc
 ds = R_B dtheta. The pressure on a *deformed* profile has a moment about the body's
 centre: -R_B int p du/dtheta dtheta (central differences); this is the viscoelastic
-torque ``torque_viscoelastic`` (bearing) / ``torque_viscoelastic_journal``, and
+torque ``torque_viscoelastic`` (housing) / ``torque_viscoelastic_shaft``, and
 -omega times it is the hysteretic dissipation (Eq. 3.46 with the sign fixed so that it is
 non-negative for both bodies: power into a body = int p du/dt ds, du/dt = -Omega du/dtheta
 for a pattern moving at Omega relative to it):
 
-- ``torque_bearing`` about O: R_B^2 int tau_B dtheta + torque_viscoelastic.
-- ``torque_journal`` about the journal's own centre O': R_J R_B int tau_J dtheta +
-  torque_viscoelastic_journal. ``torque_journal_about_O`` = torque_journal + e x F (the
-  thesis's choice, = -torque_bearing up to O(c/R) by the fluid's moment balance).
+- ``torque`` (on the housing) about O: R_B^2 int tau_B dtheta + torque_viscoelastic.
+- ``torque_shaft`` about the journal's own centre O': R_J R_B int tau_J dtheta +
+  torque_viscoelastic_shaft. ``torque_shaft_about_O`` = torque_shaft + e x F (the
+  thesis's choice, = -torque up to O(c/R) by the fluid's moment balance).
 - Power balance (exact for the discrete equations with Reynolds/Sommerfeld conditions):
-  -omega_B torque_bearing - omega_J torque_journal + p_s Q_s
-  = dissipation_fluid + dissipation_bearing + dissipation_journal.
+  -omega_B torque - omega_J torque_shaft + p_s Q_s
+  = dissipation_fluid + dissipation_housing + dissipation_shaft.
 
 Solver
 ------
 Unknowns p/p_ref (n values), eps, attitude: n + 2 equations (cell balances / FB, groove
-datum, two force components). Newton with the exact dense AD Jacobian and a backtracking
-line search on 0.5 |r|^2 (steps giving h <= 0 are rejected). ``solver="auto"`` first
-tries Newton from the rigid half-Sommerfeld estimate (for n >= 512 from the solution on a
-4x coarser grid, interpolated; or from ``initial``, e.g. the previous point of a sweep);
-if it fails or
-lands on the spurious branch (effective eccentricity <= 0: the supply at the minimum
-gap), it continues from a rigid solution at a higher entrainment speed (such that the rigid
-eccentricity is about 0.6), ramping the compliance in and the speed down over
-``stages`` Newton solves. Derivatives of the converged solution are implicit
-(:mod:`vjax._implicit`), not through the iterations.
+datum, two force components). The core's damped Newton (:func:`vjax._solve.newton`) with the
+exact dense AD Jacobian (steps giving h <= 0 are rejected). ``options.strategy="auto"``
+first tries Newton from the rigid half-Sommerfeld estimate (for n >= 512 from the solution on
+a 4x coarser grid, interpolated; or from ``initial``, e.g. the previous point of a sweep); if
+it fails or lands on the spurious branch (effective eccentricity <= 0: the supply at the
+minimum gap), it continues from a rigid solution at a higher entrainment speed (such that
+the rigid eccentricity is about 0.6), ramping the compliance in and the speed down over at
+most ``options.stages`` Newton solves. Derivatives of the converged solution are implicit
+(:func:`vjax._solve.implicit_root`), not through the iterations.
 
-Convergence: ``iterations``, ``stages`` (continuation stages used, 0 = direct),
-``residual`` (max-norm of the scaled equations) and ``converged`` (also requires the
-physical branch). Under ``jit`` a failure is only flagged; outside, ``throw=True``
-(default) raises RuntimeError, and :meth:`JournalSolution.check` does the same later.
+Convergence: ``iterations`` (Newton steps on the final grid, summed over continuation
+stages), ``stages`` (continuation stages used, 0 = direct), ``residual`` (max-norm of the
+scaled equations), ``result`` (0 = converged on the physical branch). ``throw=True``
+raises :class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
 """
 from __future__ import annotations
 
 import dataclasses
 import math
 from functools import partial
-from typing import NamedTuple
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks
-from ._implicit import implicit_root
-from .material import Material
-from .operator import grid, memory_revolutions, ring_operator
+from . import _checks, _scene, _solve, reynolds
+from .bodies import as_body, disc, half_plane, hole
+from .operator import RingOperator, grid, memory_revolutions
 
-CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+HOUSINGS = ("hole", "half_plane")
+SHAFTS = ("disc", "half_plane")
 NESTED_MIN_N = 512  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
-GREENS = ("circular", "half_plane")
+
+
+@dataclasses.dataclass(frozen=True)
+class JournalOptions:
+    """Static options of :func:`journal_bearing`: ``n`` elements (even, >= 16), Newton
+    tolerance ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in
+    float32), ``max_iter`` Newton steps per solve, at most ``stages`` continuation solves,
+    ``strategy`` "auto" (direct Newton, continuation if that fails), "newton" or
+    "continuation"."""
+
+    n: int = 256
+    tol: float | None = None
+    max_iter: int = 40
+    stages: int = 40
+    strategy: str = "auto"
+
+    def __post_init__(self):
+        _checks.option_count("n", self.n, 16)
+        if self.n % 2:
+            raise ValueError(f"n must be even, got {self.n}")
+        if self.tol is not None:
+            _checks.option_number("tol", self.tol)
+        _checks.option_count("max_iter", self.max_iter)
+        _checks.option_count("stages", self.stages)
+        _checks.one_of("strategy", self.strategy, ("auto", "newton", "continuation"))
 
 
 @jax.tree_util.register_dataclass
-@dataclasses.dataclass(frozen=True)
-class JournalSolution:
+@dataclasses.dataclass(frozen=True, repr=False)
+class JournalResult(_scene.SceneResult):
     """Solution of :func:`journal_bearing` (SI units, per unit axial length).
 
     Arrays on the ring grid (line-of-centres frame, theta = 0 at the smallest rigid gap):
-    ``theta`` (rad), ``pressure`` (Pa, gauge), ``film`` h (m), ``displacement_bearing``
-    u_B (m, outward), ``displacement_journal`` u_J (m, inward).
+    ``theta`` (rad), ``pressure`` (Pa, gauge), ``film`` h (m), ``displacement`` of the
+    housing's bore u_B (m, outward, into the housing), ``displacement_shaft`` u_J (m, inward,
+    into the journal).
 
-    Scalars: ``eccentricity`` eps = e/c of the journal centre; ``eccentricity_effective``
-    first Fourier mode of h over c (positive on the physical branch; independent of the
-    log reference length); ``attitude_angle`` (rad, signed angle from the load line to the
-    line of centres, positive counter-clockwise); ``line_of_centres_angle`` (absolute,
-    rad); ``min_film`` (m); ``rupture_angle`` (rad, line-of-centres frame, where the film
-    cavitates; for "sommerfeld" the downstream zero of p); ``force`` fluid pressure force on
-    the journal (N/m, absolute x, y); torques (N m/m, by the fluid on the body, CCW positive)
-    ``torque_bearing`` (about O), ``torque_journal`` (about O'), ``torque_journal_about_O``,
-    ``torque_viscoelastic`` (pressure-on-deformed-bearing part of torque_bearing, from the
-    dissipated power Eq. 3.46), ``torque_viscoelastic_journal``; dissipation (W/m)
-    ``dissipation_fluid``, ``dissipation_bearing``, ``dissipation_journal``;
-    ``supply_flow`` Q_s (m^2/s, net outflow of the groove cell; the Swift-Stieber model
-    lets the cavity carry a full-film Couette flow, i.e. it does not conserve mass across
-    the cavity, so Q_s can be negative); ``hersey`` H = eta v R_B/|F| (signed, as the thesis);
-    ``ref_length`` (m) used by the Green's functions.
+    ``force``: pressure force of the film on the housing (N/m, absolute x, y; the load at
+    equilibrium). ``torque``: by the fluid on the housing about O; ``torque_shaft``: on the
+    journal about O'; ``torque_shaft_about_O``; ``torque_viscoelastic``,
+    ``torque_viscoelastic_shaft``: the pressure-on-deformed-profile parts (N m/m, CCW
+    positive; see the module docstring). ``friction_radius``: |torque|/|force| (m).
+    ``eccentricity`` eps = e/c of the journal centre; ``eccentricity_effective`` first Fourier
+    mode of h over c (positive on the physical branch; independent of the log reference
+    length); ``attitude_angle`` (rad, signed angle from the load line to the line of centres,
+    counter-clockwise positive); ``line_of_centres_angle`` (absolute, rad); ``min_film`` (m);
+    ``rupture_angle`` (rad, line-of-centres frame, where the film cavitates; for "sommerfeld"
+    the downstream zero of p); dissipation (W/m) ``dissipation_fluid``,
+    ``dissipation_housing``, ``dissipation_shaft``; ``supply_flow`` Q_s (m^2/s, net outflow of
+    the groove cell; can be negative: the Swift-Stieber cavity does not conserve mass);
+    ``hersey`` H = eta v R_B/|F| (signed, as the thesis).
 
-    Convergence: ``iterations`` (Newton steps in total on this grid; a nested coarse-grid
-    start is not counted), ``stages`` (continuation stages,
-    0 = direct), ``residual`` (max-norm of the scaled equations), ``converged``.
+    Convergence: ``iterations`` (Newton steps on this grid, summed over stages; a nested
+    coarse-grid start is not counted), ``stages`` (continuation stages, 0 = direct),
+    ``residual`` (max-norm of the scaled equations), ``result``; ``converged`` is ``result == 0``.
     """
 
     theta: jax.Array
     pressure: jax.Array
     film: jax.Array
-    displacement_bearing: jax.Array
-    displacement_journal: jax.Array
+    displacement: jax.Array
+    displacement_shaft: jax.Array
+    force: jax.Array
+    torque: jax.Array
+    torque_shaft: jax.Array
+    torque_shaft_about_O: jax.Array
+    torque_viscoelastic: jax.Array
+    torque_viscoelastic_shaft: jax.Array
+    friction_radius: jax.Array
     eccentricity: jax.Array
     eccentricity_effective: jax.Array
     attitude_angle: jax.Array
     line_of_centres_angle: jax.Array
     min_film: jax.Array
     rupture_angle: jax.Array
-    force: jax.Array
-    torque_bearing: jax.Array
-    torque_journal: jax.Array
-    torque_journal_about_O: jax.Array
-    torque_viscoelastic: jax.Array
-    torque_viscoelastic_journal: jax.Array
     dissipation_fluid: jax.Array
-    dissipation_bearing: jax.Array
-    dissipation_journal: jax.Array
+    dissipation_housing: jax.Array
+    dissipation_shaft: jax.Array
     supply_flow: jax.Array
     hersey: jax.Array
-    ref_length: jax.Array
     iterations: jax.Array
     stages: jax.Array
     residual: jax.Array
-    converged: jax.Array
-
-    def check(self) -> "JournalSolution":
-        """Raise RuntimeError if the solve did not converge (concrete results only)."""
-        if not _checks.is_concrete(self.converged):
-            raise RuntimeError("check() needs a concrete result (call it outside jit)")
-        bad = ~np.asarray(self.converged)
-        if np.any(bad):
-            raise RuntimeError(
-                f"journal_bearing did not converge: {int(np.max(self.iterations))} Newton "
-                f"iterations, {int(np.max(self.stages))} continuation stages, residual "
-                f"{float(np.max(self.residual)):.3e} (or the solution is on the spurious "
-                f"branch with eccentricity_effective <= 0: "
-                f"{float(np.min(self.eccentricity_effective)):.3g})")
-        return self
+    result: jax.Array
 
 
-class _Config(NamedTuple):
-    n: int
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class _Params:
+    """Differentiable parameters (SI); the operators are None for rigid bodies."""
+
+    R: jax.Array
+    RJ: jax.Array
+    c: jax.Array
+    eta: jax.Array
+    v: jax.Array                 # entrainment speed (m/s)
+    W: jax.Array                 # load magnitude (N/m)
+    load_angle: jax.Array
+    ps: jax.Array                # groove pressure (Pa)
+    omega_B: jax.Array
+    omega_J: jax.Array
+    p_ref: jax.Array
+    q_ref: jax.Array
+    op_B: RingOperator | None
+    op_J: RingOperator | None
+    x0: jax.Array                # starting point: travels with the parameters, not differentiated
+
+
+@dataclasses.dataclass(frozen=True)
+class _Config:
     cavitation: str
     groove: int
-    has_bearing: bool
-    has_journal: bool
-    solver: str
-    stages: int
-    maxiter: int
+    options: JournalOptions
     tol: float
 
 
-# --------------------------------------------------------------------------------------
-# helpers
-
-
-def _fb(a, b):
-    """Fischer-Burmeister a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0, a b = 0.
-    Double where: at (0, 0) the derivative is (1, 1), an element of its generalized Jacobian."""
-    s = a * a + b * b
-    ok = s > 0
-    return a + b - jnp.where(ok, jnp.sqrt(jnp.where(ok, s, 1.0)), 0.0)
-
-
-def _apply(symbol, sigma, n):
-    return jnp.fft.irfft(symbol * jnp.fft.rfft(sigma), n)
+def _rigid_eps(G):
+    """Invert the rigid half-Sommerfeld load g(eps) = G (g increases from 0 to inf)."""
+    return _solve.bisect(lambda e: _half_sommerfeld_g(e) - G, jnp.zeros_like(G), jnp.full_like(G, 0.9999), 60)
 
 
 def _half_sommerfeld_g(eps):
@@ -222,429 +229,284 @@ def _half_sommerfeld_g(eps):
     return eps * jnp.sqrt(jnp.pi**2 * (1 - eps**2) + 4 * eps**2) / ((2 + eps**2) * (1 - eps**2))
 
 
-def _rigid_eps(G):
-    """Invert the half-Sommerfeld load g(eps) = G by bisection (g increases from 0 to inf)."""
-    def body(_, lohi):
-        lo, hi = lohi
-        mid = 0.5 * (lo + hi)
-        big = _half_sommerfeld_g(mid) > G
-        return jnp.where(big, lo, mid), jnp.where(big, mid, hi)
-    lo, hi = jax.lax.fori_loop(0, 60, body, (jnp.zeros_like(G), jnp.full_like(G, 0.9999)))
-    return 0.5 * (lo + hi)
-
-
-def _guess(pr, cfg, speed_factor=1.0):
+def _guess(pr: _Params, n, speed_factor=1.0):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude]."""
-    theta, _ = grid(cfg.n)
-    v = pr["v"] * speed_factor
-    G = pr["W"] * pr["c"] ** 2 / (12 * pr["eta"] * jnp.abs(v) * pr["R"] ** 2)
+    theta, _ = grid(n)
+    v = pr.v * speed_factor
+    G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(v) * pr.R**2)
     eps = jnp.minimum(_rigid_eps(G), 0.95)
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
-    p = (-12 * pr["eta"] * v * pr["R"] * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
-         / (pr["c"] ** 2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
+    p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
+         / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
     # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
     # Newton step can only grow the pressurized zone by one cell per iteration.
-    p = jnp.maximum(p, 0.0) / pr["p_ref"] + 0.1
+    p = jnp.maximum(p, 0.0) / pr.p_ref + 0.1
     return jnp.concatenate([p, jnp.stack([eps, phi])])
 
 
-def _fields(x, pr, cfg):
+def _fields(x, pr: _Params, cfg: _Config):
     """Pressure, film, displacements and face fluxes for unknowns x."""
-    n = cfg.n
+    n = x.shape[0] - 2
     theta, alpha = grid(n)
-    dth = 2 * alpha
-    p = x[:n] * pr["p_ref"]
-    eps = x[n]
-    p_load = jnp.maximum(p, 0.0) if cfg.cavitation == "half_sommerfeld" else p
+    p = x[:n] * pr.p_ref
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
     zero = jnp.zeros_like(p)
-    uB = _apply(pr["symB"], p_load, n) if cfg.has_bearing else zero
-    uJ = _apply(pr["symJ"], p_load, n) if cfg.has_journal else zero
-    h = pr["c"] * (1 - eps * jnp.cos(theta)) + uB + uJ
-    hf = 0.5 * (h + jnp.roll(h, -1))
-    dpds = (jnp.roll(p, -1) - p) / (pr["R"] * dth)
-    q = -hf**3 * dpds / (12 * pr["eta"]) + pr["v"] * hf
-    return dict(theta=theta, dth=dth, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q)
+    uB = zero if pr.op_B is None else pr.op_B(p_load)
+    uJ = zero if pr.op_J is None else pr.op_J(p_load)
+    h = pr.c * (1 - x[n] * jnp.cos(theta)) + uB + uJ
+    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v)
+    return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q)
 
 
-def _residual_and_hmin(x, pr, cfg):
-    n = cfg.n
+def _equations(x, pr: _Params, cfg: _Config):
+    """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
+    n = x.shape[0] - 2
     f = _fields(x, pr, cfg)
-    # net outflow of each cell, scaled to O(1) per unit angle
-    w = (f["q"] - jnp.roll(f["q"], 1)) / (pr["q_ref"] * f["dth"])
-    r = _fb(x[:n], w) if cfg.cavitation == "reynolds" else w
-    r = r.at[cfg.groove].set(x[cfg.groove] - pr["ps"] / pr["p_ref"])
+    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
+    r = r.at[cfg.groove].set(x[cfg.groove] - pr.ps / pr.p_ref)
     phi = x[n + 1]
-    th = f["theta"]
-    Fx = -pr["R"] * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(th))
-    Fy = -pr["R"] * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(th))
-    bal = jnp.stack([Fx / pr["W"] + jnp.cos(phi), Fy / pr["W"] - jnp.sin(phi)])
+    Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
+    Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
+    bal = jnp.stack([Fx / pr.W + jnp.cos(phi), Fy / pr.W - jnp.sin(phi)])
     return jnp.concatenate([r, bal]), jnp.min(f["h"])
 
 
-def _residual(x, pr, cfg):
-    return _residual_and_hmin(x, pr, cfg)[0]
-
-
-def _effective_eps(h, c, n):
-    theta, _ = grid(n)
-    a1 = 2.0 / n * jnp.sum(h * jnp.cos(theta))
-    b1 = 2.0 / n * jnp.sum(h * jnp.sin(theta))
+def _effective_eps(h, c):
+    theta, _ = grid(h.shape[0])
+    a1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.cos(theta))
+    b1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.sin(theta))
     return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
 
 
 def _newton(x0, pr, cfg):
-    """Damped Newton; returns x, iterations, max|r|, converged (incl. physical branch)."""
-    n = cfg.n
-    dtype = x0.dtype
+    """The core's Newton on the equations (films must stay positive): x, Stats (with the
+    physical branch folded into the result)."""
+    def equations(x, state):
+        r, hmin = _equations(x, pr, cfg)
+        return r, state, hmin > 0
 
-    def merit(x):
-        r, hmin = _residual_and_hmin(x, pr, cfg)
-        m = 0.5 * jnp.sum(r * r)
-        bad = ~jnp.isfinite(m) | (hmin <= 0) | ~jnp.all(jnp.isfinite(x))
-        return jnp.where(bad, jnp.inf, m), r
-
-    m0, r0 = merit(x0)
-
-    def cond(s):
-        k, x, r, m, status = s
-        return (status == 0) & (k < cfg.maxiter)
-
-    def body(s):
-        k, x, r, m, status = s
-        J = jax.jacfwd(_residual)(x, pr, cfg)
-        dx = jnp.linalg.solve(J, -r)
-        # a trust cap on the two geometric unknowns (eps, attitude)
-        big = jnp.max(jnp.abs(dx[n:]))
-        dx = dx * jnp.minimum(1.0, 0.3 / jnp.where(big > 0, big, 1.0))
-        finite = jnp.all(jnp.isfinite(dx))
-        dx = jnp.where(finite, dx, 0.0)
-
-        def ls_cond(t_state):
-            t, mt, rt, j = t_state
-            return (~(mt <= (1 - 1e-4 * t) * m)) & (j < 40)
-
-        def ls_body(t_state):
-            t, mt, rt, j = t_state
-            t = 0.5 * t
-            mt, rt = merit(x + t * dx)
-            return t, mt, rt, j + 1
-
-        m1, r1 = merit(x + dx)
-        t, mt, rt, j = jax.lax.while_loop(ls_cond, ls_body, (jnp.asarray(1.0, dtype), m1, r1, 0))
-        accepted = (mt <= (1 - 1e-4 * t) * m) & finite
-        x_new = jnp.where(accepted, x + t * dx, x)
-        r_new = jnp.where(accepted, rt, r)
-        m_new = jnp.where(accepted, mt, m)
-        done = jnp.max(jnp.abs(r_new)) < cfg.tol
-        status = jnp.where(done, 1, jnp.where(accepted, 0, 2))
-        return k + 1, x_new, r_new, m_new, status
-
-    status0 = jnp.where(jnp.isfinite(m0), jnp.where(jnp.max(jnp.abs(r0)) < cfg.tol, 1, 0), 2)
-    k, x, r, m, status = jax.lax.while_loop(cond, body, (0, x0, r0, m0, status0))
-    f = _fields(x, pr, cfg)
-    physical = _effective_eps(f["h"], pr["c"], n) > 0
-    res = jnp.where(jnp.isfinite(m), jnp.max(jnp.abs(r)), jnp.inf)
-    return x, k, res, (status == 1) & physical
+    n = x0.shape[0] - 2
+    # a trust cap on the two geometric unknowns (eps, attitude)
+    cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap)
+    physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c) > 0
+    result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
+    return x, _solve.Stats(stats.iterations, stats.residual, result)
 
 
-def _staged(pr, cfg, t):
+def _staged(pr: _Params, t):
     """Problem at continuation parameter t in [0, 2].
 
     t in [0, 1]: compliance ramped in (factor t) at M times the entrainment speed, with M
     such that the rigid bearing runs at eps ~ 0.6 (thick film, mild coupling);
     t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
     """
-    G = pr["W"] * pr["c"] ** 2 / (12 * pr["eta"] * jnp.abs(pr["v"]) * pr["R"] ** 2)
+    G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
     M = jnp.maximum(1.0, G / _half_sommerfeld_g(0.6))
-    q = dict(pr)
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
     s = jnp.clip(t, 0.0, 1.0)
-    q["v"] = pr["v"] * m
-    q["q_ref"] = pr["q_ref"] * m
-    if cfg.has_bearing:
-        q["symB"] = pr["symB"] * s
-    if cfg.has_journal:
-        q["symJ"] = pr["symJ"] * s
-    return q, m
+    scale = lambda op: None if op is None else RingOperator(op.symbol * s, op.n)
+    return dataclasses.replace(pr, v=pr.v * m, q_ref=pr.q_ref * m, op_B=scale(pr.op_B), op_J=scale(pr.op_J)), m
 
 
 def _continuation(pr, cfg):
     """Adaptive continuation in t (see :func:`_staged`): a failed stage halves the step,
-    a converged one lets it grow by 1.5. At most ``cfg.stages`` Newton solves."""
-    q0, m0 = _staged(pr, cfg, 0.0)
-    x0, k0, _, ok0 = _newton(_guess(pr, cfg, m0), q0, cfg)
+    a converged one lets it grow by 1.5. At most ``stages`` Newton solves."""
+    n = pr.x0.shape[0] - 2
+    q0, m0 = _staged(pr, 0.0)
+    x0, st0 = _newton(_guess(pr, n, m0), q0, cfg)
 
     def cond(s):
-        t, dt, x, its, nst, res, ok = s
-        return (t < 2.0) & (nst < cfg.stages) & (dt > 1e-3) & ok0
+        t, dt, x, its, nst, stats = s
+        return (t < 2.0) & (nst < cfg.options.stages) & (dt > 1e-3) & st0.converged
 
     def body(s):
-        t, dt, x, its, nst, res, ok = s
+        t, dt, x, its, nst, _ = s
         t1 = jnp.minimum(t + dt, 2.0)
-        q, _ = _staged(pr, cfg, t1)
-        x1, k, res1, conv = _newton(x, q, cfg)
-        t = jnp.where(conv, t1, t)
-        x = jnp.where(conv, x1, x)
-        dt = jnp.where(conv, jnp.minimum(1.5 * dt, 0.5), 0.5 * dt)
-        return t, dt, x, its + k, nst + 1, res1, conv
+        x1, st = _newton(x, _staged(pr, t1)[0], cfg)
+        ok = st.converged
+        return (jnp.where(ok, t1, t), jnp.where(ok, jnp.minimum(1.5 * dt, 0.5), 0.5 * dt), jnp.where(ok, x1, x),
+                its + st.iterations, nst + 1, st)
 
     dtype = x0.dtype
-    init = (jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype), x0, k0, 1,
-            jnp.asarray(jnp.inf, dtype), ok0)
-    t, dt, x, its, nst, res, ok = jax.lax.while_loop(cond, body, init)
-    return x, its, res, ok & (t >= 2.0), nst
+    init = (jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype), x0, st0.iterations, 1, st0)
+    t, _, x, its, nst, stats = jax.lax.while_loop(cond, body, init)
+    # a stage that did not reach the target problem: its own code, or the iteration limit
+    result = jnp.where(t >= 2.0, stats.result, jnp.where(stats.converged, _solve.MAX_ITERATIONS, stats.result))
+    return x, _solve.Stats(its, stats.residual, result), nst
 
 
-def _solver(pr, x_init, cfg):
-    compliant = cfg.has_bearing or cfg.has_journal
-    x, k, res, conv = _newton(x_init, pr, cfg)
-    stages = jnp.asarray(0)
-    if cfg.solver == "continuation" and compliant:
-        x, k, res, conv, stages = _continuation(pr, cfg)
-    elif cfg.solver == "auto" and compliant:
-        def fallback(_):
-            x2, k2, res2, conv2, st2 = _continuation(pr, cfg)
-            return x2, k + k2, res2, conv2, st2
-        x, k, res, conv, stages = jax.lax.cond(
-            conv, lambda _: (x, k, res, conv, stages), fallback, None)
-    # report the residual of the target problem at the returned point (after a failed
-    # continuation x belongs to an intermediate stage)
-    r = jnp.max(jnp.abs(_residual(x, pr, cfg)))
-    res = jnp.where(jnp.isfinite(r), r, jnp.inf)
-    conv = conv & (res < cfg.tol)
-    return x, dict(iterations=jnp.asarray(k), stages=stages, residual=res, converged=conv)
-
-
-def _rupture_angle(p, theta, v, cavitation):
-    """Angle (line-of-centres frame) where p first reaches 0 downstream of its maximum."""
-    n = p.shape[0]
-    dth = 2 * jnp.pi / n
-    imax = jnp.argmax(p)
-    direction = jnp.where(v >= 0, 1, -1)
-    idx = (imax + direction * jnp.arange(n)) % n
-    pk = p[idx]
-    thr = 1e-9 * jnp.max(jnp.abs(p))
-    kc = jnp.maximum(jnp.argmax(pk <= thr), 2)
-    a, b, z = pk[kc - 2], pk[kc - 1], pk[kc]
-    if cavitation == "sommerfeld":  # p changes sign between kc - 1 and kc: interpolate
-        den = b - z
-        frac = jnp.where(den > 0, b / jnp.where(den > 0, den, 1.0), 0.0)
+def _solver(pr: _Params, cfg: _Config):
+    compliant = pr.op_B is not None or pr.op_J is not None
+    x0 = jax.lax.stop_gradient(pr.x0)
+    strategy = cfg.options.strategy if compliant else "newton"
+    if strategy == "continuation":
+        x, stats, stages = _continuation(pr, cfg)
     else:
-        # the last two pressurized nodes, extrapolated: p ~ (theta_r - theta)^2 before a
-        # Reynolds rupture (sqrt(p) linear), p linear at a half-Sommerfeld zero
-        f = jnp.sqrt if cavitation == "reynolds" else (lambda y: y)
-        sa, sb = f(jnp.maximum(a, 0.0)), f(jnp.maximum(b, 0.0))
-        den = sa - sb
-        frac = jnp.where(den > 0, sb / jnp.where(den > 0, den, 1.0), 0.0)
-    # the discrete free boundary lies within the first cavitated cell: frac <= 1.5
-    ang = theta[imax] + direction * (kc - 1 + jnp.clip(frac, 0.0, 1.5)) * dth
-    return jnp.angle(jnp.exp(1j * ang))
+        x, stats = _newton(x0, pr, cfg)
+        stages = jnp.asarray(0)
+        if strategy == "auto":
+            def fallback(_):
+                x2, st2, nst = _continuation(pr, cfg)
+                return x2, _solve.Stats(stats.iterations + st2.iterations, st2.residual, st2.result), nst
+            x, stats, stages = jax.lax.cond(stats.converged, lambda _: (x, stats, stages), fallback, None)
+    # the residual of the target problem at the returned point (after a failed
+    # continuation x belongs to an intermediate stage)
+    r = jnp.max(jnp.abs(_equations(x, pr, cfg)[0]))
+    residual = jnp.where(jnp.isfinite(r), r, jnp.inf)
+    result = jnp.where(stats.converged & ~(residual <= cfg.tol), _solve.MAX_ITERATIONS, stats.result)
+    return x, (_solve.Stats(stats.iterations, residual, result), stages)
 
 
-def _outputs(x, pr, cfg, stats, ref_length):
-    n = cfg.n
+def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
+    n = x.shape[0] - 2
     f = _fields(x, pr, cfg)
     p, h, hf, dpds, th, dth = f["p"], f["h"], f["hf"], f["dpds"], f["theta"], f["dth"]
-    R, RJ, eta, c = pr["R"], pr["RJ"], pr["eta"], pr["c"]
+    R, RJ, eta, c = pr.R, pr.RJ, pr.eta, pr.c
     eps, phi = x[n], x[n + 1]
     pres = f["p_load"]
-    dU = pr["omegaB"] * R - pr["omegaJ"] * RJ
+    dU = pr.omega_B * R - pr.omega_J * RJ
     tauB = -0.5 * hf * dpds - eta * dU / hf
     tauJ = -0.5 * hf * dpds + eta * dU / hf
-
-    def central(u):
-        return 0.5 * (jnp.roll(u, -1) - jnp.roll(u, 1))
-
+    central = lambda u: 0.5 * (jnp.roll(u, -1) - jnp.roll(u, 1))
     CvB = -R * jnp.sum(pres * central(f["uB"]))
     CvJ = -R * jnp.sum(pres * central(f["uJ"]))
     CB = R * R * dth * jnp.sum(tauB) + CvB
     CJ = RJ * R * dth * jnp.sum(tauJ) + CvJ
+    # pressure force on the journal in the line-of-centres frame; the housing gets minus it
     Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
     Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
-    CJ_O = CJ + eps * c * Fy
     Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + eta * dU**2 / hf)
     g = cfg.groove
-    Qs = f["q"][g] - f["q"][(g - 1) % n]
-    gamma = pr["psi"] + phi
+    gamma = pr.load_angle + phi
     rot = jnp.array([[jnp.cos(gamma), -jnp.sin(gamma)], [jnp.sin(gamma), jnp.cos(gamma)]])
-    return JournalSolution(
-        theta=th, pressure=pres, film=h, displacement_bearing=f["uB"],
-        displacement_journal=f["uJ"], eccentricity=eps,
-        eccentricity_effective=_effective_eps(h, c, n), attitude_angle=phi,
+    force = -rot @ jnp.stack([Fx, Fy])
+    return JournalResult(
+        theta=th, pressure=pres, film=h, displacement=f["uB"], displacement_shaft=f["uJ"], force=force,
+        torque=CB, torque_shaft=CJ, torque_shaft_about_O=CJ + eps * c * Fy, torque_viscoelastic=CvB,
+        torque_viscoelastic_shaft=CvJ, friction_radius=jnp.abs(CB) / jnp.hypot(Fx, Fy), eccentricity=eps,
+        eccentricity_effective=_effective_eps(h, c), attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * gamma)), min_film=jnp.min(h),
         # half-Sommerfeld: the zero crossing of the unclipped (full-Sommerfeld) pressure
-        rupture_angle=_rupture_angle(p, th, pr["v"], "reynolds" if cfg.cavitation == "reynolds"
-                                     else "sommerfeld"),
-        force=rot @ jnp.stack([Fx, Fy]), torque_bearing=CB, torque_journal=CJ,
-        torque_journal_about_O=CJ_O, torque_viscoelastic=CvB,
-        torque_viscoelastic_journal=CvJ, dissipation_fluid=Df,
-        dissipation_bearing=-pr["omegaB"] * CvB, dissipation_journal=-pr["omegaJ"] * CvJ,
-        supply_flow=Qs, hersey=eta * pr["v"] * R / pr["W"],
-        ref_length=jnp.asarray(ref_length, dtype=p.dtype),
-        iterations=stats["iterations"], stages=stats["stages"], residual=stats["residual"],
-        converged=stats["converged"])
+        rupture_angle=reynolds.rupture_angle(p, th, pr.v, "reynolds" if cfg.cavitation == "reynolds"
+                                             else "sommerfeld"),
+        dissipation_fluid=Df, dissipation_housing=-pr.omega_B * CvB, dissipation_shaft=-pr.omega_J * CvJ,
+        supply_flow=f["q"][g] - f["q"][(g - 1) % n], hersey=eta * pr.v * R / pr.W,
+        iterations=stats.iterations, stages=stages, residual=stats.residual, result=stats.result)
 
 
-def _symbol(kind, material, R, n, omega, memory, ref_length):
-    if material is None:
-        return None
-    return ring_operator(kind, material, R, n, omega=omega, memory=memory,
-                         ref_length=ref_length).symbol
+@partial(jax.jit, static_argnums=(1,))
+def _run(pr: _Params, cfg: _Config):
+    residual = lambda x, aux, prm: _equations(x, prm, cfg)[0]
+    x, (stats, stages) = _solve.implicit_root(lambda prm: _solver(prm, cfg), residual)(pr)
+    return _outputs(x, pr, cfg, stats, stages)
 
 
-@partial(jax.jit, static_argnames=("cfg", "memory", "green"))
-def _run(scalars, bearing, journal, x_init, cfg, memory, green, ref_length):
-    R, c, eta, wB, wJ, Wx, Wy, ps = (scalars[k] for k in
-                                     ("R", "c", "eta", "wB", "wJ", "Wx", "Wy", "ps"))
-    RJ = R - c
-    W = jnp.sqrt(Wx**2 + Wy**2)
-    kindB, kindJ = ("hole", "cylinder") if green == "circular" else ("half_plane", "half_plane")
-    pr = dict(
-        symB=_symbol(kindB, bearing, R, cfg.n, -wB, memory, ref_length),
-        symJ=_symbol(kindJ, journal, RJ, cfg.n, -wJ, memory, ref_length),
-        R=R, RJ=RJ, c=c, eta=eta, v=0.5 * (wB * R + wJ * RJ), W=W, psi=jnp.arctan2(Wy, Wx),
-        ps=ps, omegaB=wB, omegaJ=wJ)
-    pr = {k: v for k, v in pr.items() if v is not None}
-    pr["p_ref"] = W / (2 * R)
-    pr["q_ref"] = c**3 * pr["p_ref"] / (12 * eta * R) + jnp.abs(pr["v"]) * c
-    # The starting point travels with the parameters (the residual ignores it), so that
-    # the custom derivative closes over no traced value.
-    pr["x0"] = _guess(pr, cfg) if x_init is None else x_init
-
-    def solver(prm):
-        return _solver(prm, jax.lax.stop_gradient(prm["x0"]), cfg)
-
-    x, stats = implicit_root(lambda xx, prm: _residual(xx, prm, cfg), solver)(pr)
-    return _outputs(x, pr, cfg, stats, ref_length)
-
-
-def journal_bearing(R_bearing, clearance, viscosity, omega_journal, omega_bearing=0.0, load=None,
-                    *, load_angle=-math.pi / 2, bearing: Material | None = None,
-                    journal: Material | None = None, memory="periodic", n: int = 256,
-                    green: str = "circular", ref_length=1.0, cavitation: str = "reynolds",
-                    supply_angle=math.pi, supply_pressure=0.0, initial: JournalSolution | None = None,
-                    solver: str = "auto", stages: int = 40, maxiter: int = 40, tol=None,
-                    throw: bool = True) -> JournalSolution:
+def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft=None, omega_shaft=0.0,
+                    omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation: str = "reynolds",
+                    supply_angle=math.pi, supply_pressure=0.0, temperature=None, shift=None,
+                    initial: "JournalResult | None" = None, options: JournalOptions = JournalOptions(),
+                    throw: bool = True) -> JournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
     See the module docstring for the equations, conventions and solver. Configurations of
-    thesis Section 3.2: HS (``bearing=`` soft, ``journal=None``), SH, SS; both ``None`` is
+    thesis Section 3.2: HS (``housing=`` soft, ``shaft=None``), SH, SS; both ``None`` is
     the rigid bearing.
 
     Args:
-      R_bearing: bore radius R_B (m). clearance: radial clearance c = R_B - R_J (m).
+      R: bore radius R_B (m). radial_clearance: c = R_B - R_J (m), 0 < c < R.
       viscosity: lubricant viscosity eta (Pa s), isoviscous.
-      omega_journal, omega_bearing: angular velocities of the bodies (rad/s, CCW > 0).
-        Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       load: external force on the journal (N/m): a vector (Fx, Fy), or a magnitude with
         ``load_angle`` (rad, default -pi/2: downward).
-      bearing, journal: :class:`~vjax.Material` or None (rigid).
+      housing, shaft: bodies of the bearing and the journal: a :class:`~vjax.Material` (hole,
+        resp. disc, with ``ref_length`` 1 m), a body (housing: hole or half_plane; shaft: disc
+        or half_plane), or None (rigid, the default).
+      omega_shaft, omega_housing: angular velocities of journal and bearing (rad/s, CCW > 0).
+        Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       memory: "periodic", "thesis" or a number of revolutions (see :mod:`vjax.operator`).
-      n: elements on the ring (even, >= 16; static). green: "circular" (A.45/A.60) or
-        "half_plane" (Fig. 3.4). ref_length: reference length of the log terms (m).
       cavitation: "reynolds" (default), "half_sommerfeld" or "sommerfeld".
       supply_angle: groove position in the line-of-centres frame (rad, default pi).
       supply_pressure: groove gauge pressure (Pa, default 0).
-      initial: a previous :class:`JournalSolution` (same n) to start Newton from (sweeps).
-      solver: "auto" (direct Newton, continuation if that fails), "newton" or
-        "continuation". stages: continuation stages. maxiter: Newton steps per solve.
-      tol: max-norm tolerance of the scaled equations (default 1e-10 in float64, 1e-4 in
-        float32).
-      throw: raise RuntimeError when a concrete result did not converge.
+      temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``.
+      initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
+      options: :class:`JournalOptions` (grid, tolerance, iteration caps, strategy; static).
+      throw: raise :class:`~vjax.ConvergenceError` on failure (inside jit too); with False
+        inspect ``converged`` and ``result``.
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
-    >>> sol = journal_bearing(0.05, 5e-5, 0.01, omega_journal=100.0, load=2e4, n=64)
+    >>> sol = journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=64))
     >>> bool(sol.converged), 0 < float(sol.eccentricity) < 1
     (True, True)
     """
-    for name, val in (("R_bearing", R_bearing), ("clearance", clearance), ("viscosity", viscosity)):
-        _checks.positive(name, val)
-    for name, val in (("omega_journal", omega_journal), ("omega_bearing", omega_bearing),
-                      ("load_angle", load_angle), ("supply_angle", supply_angle)):
-        _checks.finite(name, val)
-    _checks.nonnegative("supply_pressure", supply_pressure)
-    _checks.positive("ref_length", ref_length)
-    for name, val in (("R_bearing", R_bearing), ("clearance", clearance), ("viscosity", viscosity),
-                      ("omega_journal", omega_journal), ("omega_bearing", omega_bearing),
-                      ("load_angle", load_angle), ("supply_pressure", supply_pressure),
-                      ("ref_length", ref_length)):
-        _checks.scalar(name, val)
-    if tol is not None and not (isinstance(tol, (int, float, np.floating)) and math.isfinite(tol) and tol > 0):
-        raise ValueError(f"tol must be a finite number > 0 (or None for the default), got {tol!r}")
-    if initial is not None and not isinstance(initial, JournalSolution):
-        raise ValueError(f"initial must be a JournalSolution of the same bearing (or None), "
-                         f"got {type(initial).__name__}")
-    Rv, cv = _checks.values("R_bearing", R_bearing), _checks.values("clearance", clearance)
-    if Rv is not None and cv is not None and not np.all(cv < Rv):
-        raise ValueError(f"clearance must be < R_bearing, got clearance={clearance!r}, R_bearing={R_bearing!r}")
-    if load is None:
-        raise ValueError("load (N/m, a vector or a magnitude with load_angle) is required")
-    load = jnp.asarray(load)
-    if load.ndim == 0:
-        _checks.positive("load", load)
-        Wx, Wy = load * jnp.cos(load_angle), load * jnp.sin(load_angle)
-    elif load.shape == (2,):
-        lv = _checks.values("load", load)
-        if lv is not None and not np.hypot(*lv) > 0:
-            raise ValueError(f"load must be a non-zero vector, got {load!r}")
-        Wx, Wy = load[0], load[1]
-    else:
-        raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")
-    if not isinstance(n, (int, np.integer)) or n < 16 or n % 2:
-        raise ValueError(f"n must be an even integer >= 16, got {n!r}")
-    _checks.one_of("green", green, GREENS)
-    _checks.one_of("cavitation", cavitation, CAVITATION)
-    _checks.one_of("solver", solver, ("auto", "newton", "continuation"))
-    if not isinstance(stages, (int, np.integer)) or stages < 1:
-        raise ValueError(f"stages must be an integer >= 1, got {stages!r}")
-    if not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-        raise ValueError(f"maxiter must be an integer >= 1, got {maxiter!r}")
-    for name, mat in (("bearing", bearing), ("journal", journal)):
-        if mat is not None and not isinstance(mat, Material):
-            raise ValueError(f"{name} must be a vjax.Material or None (rigid), got {type(mat).__name__}")
+    housing = as_body("housing", housing, hole, HOUSINGS)
+    shaft = as_body("shaft", shaft, disc, SHAFTS)
+    _checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
+    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
+    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
+                   supply_angle=supply_angle)
+    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
+    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
     memory_revolutions(memory)
-    wB, wJ = jnp.asarray(omega_bearing), jnp.asarray(omega_journal)
-    vals = [_checks.values(k, v) for k, v in (("omega_bearing", omega_bearing), ("omega_journal", omega_journal))]
-    if all(v is not None for v in vals) and Rv is not None and cv is not None:
-        if np.any(vals[0] * Rv + vals[1] * (Rv - cv) == 0):
-            raise ValueError("omega_bearing R_B + omega_journal R_J = 0: zero entrainment speed, "
-                             "no hydrodynamic load capacity (omega_journal, omega_bearing)")
+    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    if Rv is not None and cv is not None and not np.all(cv < Rv):
+        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
+    Wx, Wy = _load_vector(load, load_angle)
+    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
+        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
+                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
     sa = _checks.values("supply_angle", supply_angle)
     if sa is None:
         raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
-    groove = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
+    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
+    n = options.n
     dtype = jnp.result_type(float)
-    if tol is None:
-        tol = 1e-10 if dtype == jnp.float64 else 1e-4
-    cfg = _Config(int(n), cavitation, groove, bearing is not None, journal is not None, solver,
-                  int(stages), int(maxiter), float(tol))
-    x_init = None
-    p_ref = jnp.sqrt(Wx**2 + Wy**2) / (2 * R_bearing)
+    tol = options.tol if options.tol is not None else (1e-10 if dtype == jnp.float64 else 1e-4)
+    cfg = _Config(cavitation, int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n, options, float(tol))
+
+    f = lambda v: jnp.asarray(v, dtype)
+    W = jnp.hypot(Wx, Wy)
+    eta, c = f(viscosity), f(radial_clearance)
+    v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
+    p_ref = W / (2 * R)
+    pr = _Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=f(W), load_angle=f(jnp.arctan2(Wy, Wx)),
+                 ps=f(supply_pressure), omega_B=f(omega_housing), omega_J=f(omega_shaft), p_ref=f(p_ref),
+                 q_ref=f(c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c),
+                 op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
+                 op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
+                                                                memory=memory),
+                 x0=jnp.zeros(n + 2, dtype))
     if initial is not None:
-        if initial.pressure.shape[-1] != n:
-            raise ValueError(f"initial has {initial.pressure.shape[-1]} elements, n is {n}")
-        x_init = jnp.concatenate([initial.pressure / p_ref,
-                                  jnp.stack([initial.eccentricity, initial.attitude_angle])])
-    elif solver == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
+        if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
+            raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
+        x0 = jnp.concatenate([initial.pressure / p_ref, jnp.stack([initial.eccentricity, initial.attitude_angle])])
+    elif options.strategy == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
         # cold start are spent far from the solution, where a coarse grid is as good and
         # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
         coarse = journal_bearing(
-            R_bearing, clearance, viscosity, omega_journal, omega_bearing, load=load,
-            load_angle=load_angle, bearing=bearing, journal=journal, memory=memory, n=n // 4,
-            green=green, ref_length=ref_length, cavitation=cavitation, supply_angle=supply_angle,
-            supply_pressure=supply_pressure, solver=solver, stages=stages, maxiter=maxiter,
-            tol=tol, throw=False)
-        theta_f, _ = grid(n)
-        p0 = jnp.interp(theta_f, coarse.theta, coarse.pressure, period=2 * jnp.pi)
-        x_init = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
-    if x_init is not None:  # a starting point only: no derivative flows through it
-        x_init = jax.lax.stop_gradient(x_init)
-    scalars = dict(R=R_bearing, c=clearance, eta=viscosity, wB=wB, wJ=wJ, Wx=Wx, Wy=Wy,
-                   ps=supply_pressure)
-    scalars = {k: jnp.asarray(v, dtype) for k, v in scalars.items()}
-    mem = memory if isinstance(memory, str) else float(memory)
-    sol = _run(scalars, bearing, journal, x_init, cfg, mem, green, jnp.asarray(ref_length, dtype))
-    if throw and _checks.is_concrete(sol.converged):
-        sol.check()
+            R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+            omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
+            supply_angle=supply_angle, supply_pressure=supply_pressure,
+            options=dataclasses.replace(options, n=n // 4), throw=False)
+        p0 = jnp.interp(grid(n)[0], coarse.theta, coarse.pressure, period=2 * jnp.pi)
+        x0 = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
+    else:
+        x0 = _guess(pr, n)
+    sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
+    _solve.report("journal_bearing", sol, throw)
     return sol
+
+
+def _load_vector(load, load_angle):
+    """(Wx, Wy) from a magnitude along ``load_angle`` or a vector; refuses zero loads."""
+    load = jnp.asarray(load)
+    if load.ndim == 0:
+        _checks.positive("load", load)
+        return load * jnp.cos(load_angle), load * jnp.sin(load_angle)
+    if load.shape == (2,):
+        lv = _checks.values("load", load)
+        if lv is not None and not np.hypot(*lv) > 0:
+            raise ValueError(f"load must be a non-zero vector, got {load!r}")
+        return load[0], load[1]
+    raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")

@@ -1,17 +1,23 @@
-"""Scene: rigid pin in a hole in a viscoelastic infinite plane (thesis Section 2.2).
+"""Scene: rigid pin rolling in a hole in a viscoelastic body (thesis Section 2.2).
 
-Pin radius ``R_pin`` in a hole of radius ``R`` (clearance dR = R - R_pin), load ``load``
-(N/m) pushing the pin along +x; the pin is free along x (its offset ``e`` is solved for) and
-held along y (the y force is a reaction). The contact patch turns at ``omega`` (rad/s)
-relative to the plane; a pin spinning at omega_pin gives omega = -omega_pin R_pin / dR
-(:func:`pin_patch_speed`, after Eq. 2.9). The exact circle geometry sets the overlap:
+A pin of radius R - c rolls without slip inside a bore of radius ``R`` (radial clearance
+``c``), pushed by the load ``load`` (N/m) along ``load_angle``; the pin is free along the
+load (its offset ``e`` is solved for) and held across it (that force is a reaction). Rolling
+moves the contact patch relative to the housing at (:func:`pin_patch_speed`, after Eq. 2.9)
 
-    d(theta) = e cos(theta) + sqrt(R_pin^2 - e^2 sin^2(theta)) - R.
+    Omega = -(omega_shaft - omega_housing) (R - c) / c.
 
-Reported forces are those the pin exerts **on the plane** (the negative of Eq. 2.21-2.22 as
-printed, which is the force on the pin), so ``force[0]`` equals the load. Load control
-imposes the full Eq. 2.21, slope terms included: in the thesis case they are not small
-(u'/R reaches 0.1, about 1% of the load).
+The housing is a :func:`~vjax.hole` in an infinite plane (a bare Material) or a bonded
+layer; the pin is rigid. The exact circle geometry sets the overlap (phi = load_angle):
+
+    d(theta) = e cos(theta - phi) + sqrt((R - c)^2 - e^2 sin^2(theta - phi)) - R.
+
+Outputs are those of the scene contract: ``force`` is the force the pin exerts **on the
+housing** (x, y; its component along the load equals the load), ``torque`` the friction
+torque on the housing about its centre, Eq. 2.24, counter-clockwise positive (it drags the
+housing along with the shaft: the sign of omega_shaft - omega_housing). Load control
+imposes the full Eq. 2.21, slope terms included: in the thesis case they are not small (u'/R
+reaches 0.1, about 1% of the load).
 """
 from __future__ import annotations
 
@@ -21,44 +27,63 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from . import _checks
-from ._report import check_converged
-from .contact import SolverOptions, solve_contact, solve_with_fallback
-from .material import Material
-from .operator import grid, memory_revolutions, ring_operator, spectral_derivative
+from . import _checks, _scene, _solve
+from .bodies import Body, as_body, hole
+from .contact import ContactOptions, solve_contact, solve_with_fallback
+from .operator import grid, memory_revolutions, spectral_derivative
+
+HOUSINGS = ("hole",)
+
+
+@dataclasses.dataclass(frozen=True)
+class PinOptions(ContactOptions):
+    """Static options of :func:`pin_in_hole`: ``n`` elements on the bore, and the contact
+    solve's options (``tol``, ``max_iter`` active-set steps, Krylov settings; see
+    :class:`~vjax.ContactOptions`)."""
+
+    n: int = 1024
+
+    def __post_init__(self):
+        super().__post_init__()
+        _checks.option_count("n", self.n, 16)
 
 
 @jax.tree_util.register_dataclass
-@dataclasses.dataclass(frozen=True)
-class PinResult:
+@dataclasses.dataclass(frozen=True, repr=False)
+class PinResult(_scene.SceneResult):
     """Solution of :func:`pin_in_hole`. Angles in rad, lengths in m, per unit axial length.
 
-    theta: element centres. pressure: p(theta) (Pa). displacement: u_r(theta), positive into
-    the plane (m). pin_offset: e (m). force: (Fx, Fy) on the plane (N/m), Eq. 2.21-2.22.
-    attitude_angle: arctan(Fy/Fx) (Eq. 2.23). torque: C_t = R int p u' dtheta (N m/m,
-    Eq. 2.24; its sign is that of -omega: it resists the patch motion). friction_radius:
-    |C_t|/|F| (m, Eq. 2.25). contact_mask, contact_angle: contact semi-angle (rad) of a
-    single patch. iterations, residual, converged: the contact solver's report.
+    theta: (n,) element centres. pressure: (n,) p(theta) on the bore (Pa). displacement: (n,)
+    u_r(theta) of the bore, positive into the housing (m). force: (Fx, Fy) the pin exerts on
+    the housing (N/m, Eq. 2.21-2.22 with the sign of the housing). torque: friction torque on
+    the housing about its centre (N m/m, Eq. 2.24, counter-clockwise positive). force_angle:
+    angle of ``force`` from the load line (rad, Eq. 2.23). friction_radius: |torque|/|force|
+    (m, Eq. 2.25). pin_offset: e, the pin centre's offset along the load (m). patch_speed:
+    Omega (rad/s). contact_mask: (n,) elements in contact; contact_angle: contact semi-angle
+    of a single patch (rad). iterations, residual, result: the contact solve's report
+    (active-set steps on the final grid); ``converged`` is ``result == 0``.
     """
 
     theta: jax.Array
     pressure: jax.Array
     displacement: jax.Array
-    pin_offset: jax.Array
     force: jax.Array
-    attitude_angle: jax.Array
     torque: jax.Array
+    force_angle: jax.Array
     friction_radius: jax.Array
+    pin_offset: jax.Array
+    patch_speed: jax.Array
     contact_mask: jax.Array
     contact_angle: jax.Array
     iterations: jax.Array
     residual: jax.Array
-    converged: jax.Array
+    result: jax.Array
 
 
-def pin_patch_speed(omega_pin, R, R_pin):
-    """Angular velocity of the contact patch (rad/s) for a pin spinning at ``omega_pin``."""
-    return -omega_pin * R_pin / (R - R_pin)
+def pin_patch_speed(omega_shaft, omega_housing, R, radial_clearance):
+    """Angular velocity (rad/s) of the contact patch relative to the housing for a pin
+    rolling in the bore: -(omega_shaft - omega_housing) (R - c) / c."""
+    return -(omega_shaft - omega_housing) * (R - radial_clearance) / radial_clearance
 
 
 def _pin_interference(q, args):
@@ -72,88 +97,111 @@ def _pin_interference(q, args):
 
 
 def _pin_force(sigma, u, args):
-    """Fx on the plane, -(Eq. 2.21): R dtheta sum p (cos + u'/R sin)."""
+    """Force on the housing along the load, -(Eq. 2.21): R dtheta sum p (cos + u'/R sin)."""
     R, _, theta = args
     du = spectral_derivative(u)
     return (2 * jnp.pi / theta.shape[0]) * jnp.sum(sigma * (R * jnp.cos(theta) + du * jnp.sin(theta)))[None]
 
 
-def pin_in_hole(material: Material, R, R_pin, load, omega=0.0, *, memory="periodic", n: int = 1024,
-                ref_length=1.0, throw: bool = True, options: SolverOptions = SolverOptions()) -> PinResult:
-    """Rigid pin in a hole in a viscoelastic plane under load ``load`` along x.
+def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_housing=0.0, load_angle=0.0,
+                memory="periodic", temperature=None, shift=None, initial: "PinResult | None" = None,
+                options: PinOptions = PinOptions(), throw: bool = True) -> PinResult:
+    """Rigid pin rolling in the bore of a viscoelastic housing under the load ``load``.
 
     Args:
-      material: the plane's material. R, R_pin: hole and pin radii (m), R_pin < R.
-      load: force on the pin along +x (N/m), > 0. omega: patch angular velocity (rad/s)
-        relative to the plane (thesis omega~ = omega tau); see :func:`pin_patch_speed`.
+      housing: the housing's body: a :class:`~vjax.Material` (a hole in an infinite plane,
+        :func:`~vjax.hole` with ``ref_length`` 1 m) or a body of kind "hole".
+      R: bore radius (m). radial_clearance: c = R - R_pin (m), 0 < c < R.
+      load: force on the pin (N/m), > 0, along ``load_angle`` (rad from the x axis).
+      omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
+        moves at :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
       memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.operator`).
-      n: elements on the hole (static). ref_length: log-R reference length (m). It sets
-        the absolute pin offset (the plane's rigid-body mode 1) and, through the exact
-        circle geometry (e^2 sin^2/(2 R_pin)) and the slope terms of Eq. 2.21, changes the
-        pressure at second order in e/R: 1.9% of the peak in the Persson case (dR = 4e-5 m,
-        F~ = 2.3e-2) between 1 m and the small-displacement choice e = dR
-        (experiments/persson.py, ``small_displacement_pin``).
-      throw: raise :class:`~vjax.ConvergenceError` when the solver fails (inside jit too);
-        with False, inspect ``converged``.
-      options: contact solver options (static).
+      temperature, shift: evaluate the material at ``temperature`` (C) with the shift law
+        ``shift`` (both or neither).
+      initial: a :class:`PinResult` of the same pin (same n) at nearby parameters: the solve
+        starts from its pressure and offset (fewer active-set steps; no derivative flows).
+      options: :class:`PinOptions` (grid and contact solve; static).
+      throw: raise :class:`~vjax.ConvergenceError` when the solve fails (inside jit too);
+        with False, inspect ``converged`` and ``result``.
 
-    Differentiable (jit, vmap, grad, jacfwd) in material, radii, load and omega; compiled
-    once per (n, memory, options) and material shape.
+    The hole's ``ref_length`` sets the absolute pin offset (the plane's rigid mode 1) and,
+    through the exact circle geometry and the slope terms of Eq. 2.21, changes the pressure
+    at second order in e/R: 1.9% of the peak in the Persson case (c = 4e-5 m, F~ = 2.3e-2)
+    between 1 m and the small-displacement choice e = c.
 
+    Differentiable (jit, vmap, grad, jacfwd) in the body, radii, load, angle and speeds;
+    compiled once per (options, memory) and material shape.
+
+    >>> from vjax import Material
     >>> m = Material.sls(1e6, 1e7, 0.01, 0.5)
-    >>> r = pin_in_hole(m, 0.08, 0.075, 3.5e-2 * 1e6 * 0.08, omega=1.0 / 0.01, n=512)
-    >>> bool(r.converged), round(float(r.force[0]) / 2800.0, 12)
-    (True, 1.0)
+    >>> r = pin_in_hole(m, 0.08, 0.005, 3.5e-2 * 1e6 * 0.08, omega_shaft=-100.0 / 15, options=PinOptions(n=512))
+    >>> bool(r.converged), round(float(r.force[0]) / 2800.0, 12), round(float(r.patch_speed), 9)
+    (True, 1.0, 100.0)
     """
-    _checks.instance("material", material, Material, "a vjax.Material")
-    _checks.instance("options", options, SolverOptions, "a vjax.SolverOptions")
-    _checks.positive("R", R)
-    _checks.positive("R_pin", R_pin)
-    _checks.positive("load", load)
-    _checks.finite("omega", omega)
-    _checks.positive("ref_length", ref_length)
-    for name, val in (("R", R), ("R_pin", R_pin), ("load", load), ("omega", omega), ("ref_length", ref_length)):
-        _checks.scalar(name, val)
-    r_, rp = _checks.values("R", R), _checks.values("R_pin", R_pin)
-    if r_ is not None and rp is not None and not rp < r_:
-        raise ValueError(f"R_pin must be smaller than the hole radius R, got R_pin={R_pin!r} >= R={R!r}")
+    housing = as_body("housing", housing, hole, HOUSINGS)
+    if housing is None:
+        raise ValueError("housing must be a deformable body: a rigid pin in a rigid hole has no contact solution")
+    _checks.instance("options", options, PinOptions, "a vjax.PinOptions")
+    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, load=load)
+    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    r_, c_ = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    if r_ is not None and c_ is not None and not c_ < r_:
+        raise ValueError(f"radial_clearance must be smaller than the bore radius R, got "
+                         f"radial_clearance={radial_clearance!r} >= R={R!r}")
     memory_revolutions(memory)
+    (housing,) = _scene.at_temperature(temperature, shift, housing)
+    start = None
+    if initial is not None:
+        if not isinstance(initial, PinResult) or initial.pressure.shape != (options.n,):
+            raise ValueError(f"initial must be a PinResult of the same pin (n = {options.n})")
+        start = (initial.pin_offset, initial.pressure)
+    omega = pin_patch_speed(omega_shaft, omega_housing, R, radial_clearance)
     result = solve_with_fallback(
-        lambda opts: _pin_in_hole(material, R, R_pin, load, omega, ref_length, memory, n, opts), options)
-    check_converged("pin_in_hole contact solve", result.converged, result.iterations, result.residual, throw)
+        lambda opts: _pin_in_hole(housing, R, radial_clearance, load, load_angle, omega, start, memory, opts),
+        options)
+    _solve.report("pin_in_hole", result, throw)
     return result
 
 
-@partial(jax.jit, static_argnums=(6, 7, 8))
-def _pin_in_hole(material, R, R_pin, load, omega, ref_length, memory, n, options):
+@partial(jax.jit, static_argnums=(7, 8))
+def _pin_in_hole(housing: Body, R, c, load, load_angle, omega, start, memory, options):
+    n = options.n
+    R_pin = R - c
+
     def solve(n_, q0, sigma_init):
-        op = ring_operator("hole", material, R, n_, omega, memory, ref_length)
+        op = housing.operator(R, n_, omega, memory)
+        # the grid measured from the load line: the pin moves along theta = 0
+        theta = grid(n_)[0] - load_angle
         F = jnp.asarray(load, q0.dtype)[None]
-        return solve_contact(op, _pin_interference, (R, R_pin, grid(n_)[0]), q0, _pin_force, F, options,
+        return solve_contact(op, _pin_interference, (R, R_pin, theta), q0, _pin_force, F, options,
                              sigma_init=sigma_init)
 
-    e0 = jnp.asarray((R - R_pin) + 0.5 * load / material.E0, jnp.result_type(float))[None]   # some overlap
-    sigma_init = None
-    if n >= 1024:
-        # Cold starts need ~12 active-set iterations; from a solution on an 8x coarser grid
-        # (cheap) the fine grid needs 2-3. Only a starting point: no derivative flows through it.
-        coarse = solve(n // 8, e0, None)
-        theta_c, theta_f = grid(n // 8)[0], grid(n)[0]
-        sigma_init = jnp.interp(theta_f, theta_c, coarse.pressure, period=2 * jnp.pi)
-        e0 = jnp.where(coarse.converged, coarse.q, e0)
+    if start is not None:
+        e0, sigma_init = jnp.atleast_1d(start[0]), start[1]
+    else:
+        e0 = jnp.asarray(c + 0.5 * load / housing.material.E0, jnp.result_type(float))[None]   # some overlap
+        sigma_init = None
+        if n >= 1024:
+            # Cold starts need ~12 active-set iterations; from a solution on an 8x coarser grid
+            # (cheap) the fine grid needs 2-3. Only a starting point: no derivative flows through it.
+            coarse = solve(n // 8, e0, None)
+            theta_c, theta_f = grid(n // 8)[0], grid(n)[0]
+            sigma_init = jnp.interp(theta_f, theta_c, coarse.pressure, period=2 * jnp.pi)
+            e0 = jnp.where(coarse.converged, coarse.q, e0)
     sol = solve(n, e0, sigma_init)
     theta, alpha = grid(n)
 
     p, u = sol.pressure, sol.displacement
     du = spectral_derivative(u)
     dtheta = 2 * alpha
-    # Force on the plane = -(Eq. 2.21, 2.22): p (cos + u'/R sin, sin - u'/R cos) R dtheta.
+    # Force on the housing = -(Eq. 2.21, 2.22): p (e_r + u'/R e_theta) R dtheta.
     Fx = R * dtheta * jnp.sum(p * (jnp.cos(theta) + du / R * jnp.sin(theta)))
     Fy = R * dtheta * jnp.sum(p * (jnp.sin(theta) - du / R * jnp.cos(theta)))
     torque = R * dtheta * jnp.sum(p * du)                                   # Eq. 2.24
     mask = p > 0
-    return PinResult(theta=theta, pressure=p, displacement=u, pin_offset=sol.q[0], force=jnp.stack([Fx, Fy]),
-                     attitude_angle=jnp.arctan2(Fy, Fx), torque=torque,
-                     friction_radius=jnp.abs(torque) / jnp.hypot(Fx, Fy), contact_mask=mask,
+    return PinResult(theta=theta, pressure=p, displacement=u, force=jnp.stack([Fx, Fy]), torque=torque,
+                     force_angle=jnp.angle(jnp.exp(1j * (jnp.arctan2(Fy, Fx) - load_angle))),
+                     friction_radius=jnp.abs(torque) / jnp.hypot(Fx, Fy), pin_offset=sol.q[0],
+                     patch_speed=jnp.asarray(omega, p.dtype), contact_mask=mask,
                      contact_angle=jnp.sum(mask) * alpha, iterations=sol.iterations, residual=sol.residual,
-                     converged=sol.converged)
+                     result=sol.result)

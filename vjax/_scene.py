@@ -1,0 +1,62 @@
+"""What every scene shares (internal): the result record's behaviour and the common arguments.
+
+Every scene result has ``pressure``, ``displacement``, ``force``, ``torque``, ``iterations``,
+``residual``, ``result`` and the property ``converged`` (see the README's scene table), a
+short ``repr`` and :meth:`SceneResult.summary`.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from . import _checks, _solve
+
+
+class SceneResult:
+    """Mixin for the frozen result dataclasses of the scenes (declared with ``repr=False``)."""
+
+    @property
+    def converged(self):
+        """``result == 0``: the scene's solve met its tolerance."""
+        return self.result == _solve.SUCCESS
+
+    def _describe(self, sep):
+        parts = []
+        for f in dataclasses.fields(self):
+            v = getattr(self, f.name)
+            shape = np.shape(v)
+            if not _checks.is_concrete(v):
+                parts.append(f"{f.name}=<traced {shape}>")
+            elif shape == () and f.name != "result":
+                parts.append(f"{f.name}={np.asarray(v).item():.6g}")
+            elif f.name != "result":
+                parts.append(f"{f.name}=<array {shape}>")
+        if _checks.is_concrete(self.result) and np.shape(self.result) == ():
+            parts.append(f"status: {_solve.MESSAGES[int(self.result)]}")
+        return sep.join(parts)
+
+    def summary(self) -> str:
+        """Scalars and convergence, one per line; arrays as their shapes."""
+        return f"{type(self).__name__}\n  " + self._describe("\n  ")
+
+    def __repr__(self):
+        return f"{type(self).__name__}({self._describe(', ')})"
+
+
+def at_temperature(temperature, shift, *bodies):
+    """The bodies (None = rigid) at ``temperature`` (C) under ``shift``; both or neither."""
+    if (temperature is None) != (shift is None):
+        raise ValueError("temperature and shift must be given together (shift: a WLF/Arrhenius law)")
+    if temperature is None:
+        return bodies
+    _checks.finite("temperature", temperature)
+    _checks.scalar("temperature", temperature)
+    return tuple(None if b is None else b.at_temperature(shift, temperature) for b in bodies)
+
+
+def scalars(checker, **values):
+    """Check each named value with ``checker`` (e.g. ``_checks.positive``) and that it is a scalar."""
+    for name, v in values.items():
+        checker(name, v)
+        _checks.scalar(name, v)

@@ -1,0 +1,210 @@
+"""The solver core every scene is built on (internal).
+
+One of each:
+
+- :class:`Stats`: the convergence record every solve returns (``iterations``, ``residual``,
+  ``result`` code; ``converged`` is ``result == SUCCESS``). ``iterations`` always counts the
+  steps of the solve's *outer* Newton-type iteration (active-set steps of a contact solve,
+  Newton steps of a bearing's balance equations), never inner Krylov steps.
+- :func:`report`: the one failure path. With ``throw=True`` a failed solve raises
+  :class:`ConvergenceError` naming it, outside ``jit`` directly and inside ``jit`` from a host
+  callback (JAX then re-raises it wrapped in its runtime error, with the same message). Under
+  ``vmap`` one failed point raises for the whole batch. ``throw=False`` only returns the flag.
+- :func:`newton`: damped Newton with an Armijo backtracking line search.
+- :func:`implicit_root`: derivatives of a root by the implicit function theorem (forward and
+  reverse mode, dense or matrix-free linear solve at the root), never through iterations.
+- :func:`bisect`: vectorized bisection of a bracketed root.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from ._checks import is_concrete
+
+# Result codes (``Stats.result``).
+SUCCESS, MAX_ITERATIONS, STALLED, NONFINITE, INNER_FAILED, NONPHYSICAL = range(6)
+MESSAGES = ("converged", "reached its iteration limit", "line search stalled (no decrease along the Newton step)",
+            "produced non-finite values", "an inner solve failed",
+            "converged to the non-physical branch")
+
+
+class ConvergenceError(RuntimeError):
+    """A solve did not reach its tolerance (see the message for which solve and why)."""
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Stats:
+    """Convergence record: outer iterations, final residual (the solve's own scaled norm) and
+    result code (0 = success, see :data:`MESSAGES`)."""
+
+    iterations: jax.Array
+    residual: jax.Array
+    result: jax.Array
+
+    @property
+    def converged(self):
+        return self.result == SUCCESS
+
+
+def _fail_message(what, result, iterations, residual):
+    result, iterations, residual = (np.asarray(a) for a in (result, iterations, residual))
+    bad = np.flatnonzero(result.ravel() != SUCCESS)
+    if bad.size == 0:
+        return None
+    i = bad[0]
+    where = f" at {bad.size} of {result.size} points (first: flat index {i})" if result.size > 1 else ""
+    return (f"{what} did not converge{where}: {MESSAGES[int(result.ravel()[i])]} after "
+            f"{int(np.ravel(iterations)[i])} iterations, residual {float(np.ravel(residual)[i]):.3e}. "
+            f"Pass throw=False to inspect the result, or change the options.")
+
+
+def _raise(what, result, iterations, residual):
+    message = _fail_message(what, result, iterations, residual)
+    if message is not None:
+        raise ConvergenceError(message)
+
+
+def report(what: str, stats: Stats, throw: bool) -> None:
+    """Raise :class:`ConvergenceError` if ``stats`` failed and ``throw``; inside jit too."""
+    if not throw:
+        return
+    args = (stats.result, stats.iterations, stats.residual)
+    if is_concrete(args):
+        _raise(what, *args)
+    else:
+        jax.debug.callback(lambda *a: _raise(what, *a), *args)
+
+
+def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30):
+    """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian.
+
+    ``state`` is carried from one accepted point to the next and not differentiated (e.g. the
+    pressures that warm-start a nested contact solve); ``valid`` marks points the equations
+    accept (finite film, converged inner solves). Each iteration takes the Newton step
+    (scaled down so that ``|dx_i| <= max_step_i``) and halves it until the trial point is valid
+    and 0.5|r|^2 decreased by the Armijo factor ``1 - 1e-4 lam``. Converged when
+    ``max|r| <= tol`` at a valid point. Returns ``(x, state, Stats)``.
+    """
+    def fn_aux(x, state):
+        out = fn(x, state)
+        return out[0], out
+
+    jacobian = jax.jacfwd(fn_aux, has_aux=True)
+    half_sq = lambda r: 0.5 * jnp.sum(r * r)
+    r0, s0, v0 = fn(x0, state0)
+    ok0 = jnp.all(jnp.isfinite(r0)) & v0
+    done0 = ok0 & (jnp.max(jnp.abs(r0)) <= tol)
+    result0 = jnp.where(done0, SUCCESS, jnp.where(ok0, MAX_ITERATIONS, NONFINITE))
+
+    def cond(c):
+        k, _, _, _, result = c
+        return (result == MAX_ITERATIONS) & (k < max_iter)
+
+    def body(c):
+        k, x, r, state, _ = c
+        J, (r, state, _) = jacobian(x, state)
+        dx = jnp.linalg.solve(J, -r)
+        if max_step is not None:
+            ratio = jnp.max(jnp.abs(dx) / max_step)
+            dx = dx / jnp.maximum(1.0, ratio)
+        finite = jnp.all(jnp.isfinite(dx))
+        dx = jnp.where(finite, dx, 0.0)
+        m = half_sq(r)
+
+        def trial(lam):
+            rt, st, vt = fn(x + lam * dx, state)
+            mt = half_sq(rt)
+            return rt, st, vt & jnp.isfinite(mt) & (mt <= (1.0 - 1e-4 * lam) * m)
+
+        def ls_cond(t):
+            lam, _, _, ok, j = t
+            return ~ok & (j < max_halvings)
+
+        def ls_body(t):
+            lam, *_, j = t
+            lam = 0.5 * lam
+            return (lam, *trial(lam), j + 1)
+
+        lam, rt, st, ok, _ = jax.lax.while_loop(ls_cond, ls_body, (jnp.asarray(1.0, r.dtype), *trial(1.0), 0))
+        ok = ok & finite
+        x = jnp.where(ok, x + lam * dx, x)
+        r = jnp.where(ok, rt, r)
+        state = jax.tree_util.tree_map(lambda a, b: jnp.where(ok, a, b), st, state)
+        result = jnp.where(~finite, NONFINITE, jnp.where(~ok, STALLED, jnp.where(
+            jnp.max(jnp.abs(r)) <= tol, SUCCESS, MAX_ITERATIONS)))
+        return k + 1, x, r, state, result
+
+    k, x, r, state, result = jax.lax.while_loop(cond, body, (0, x0, r0, s0, result0))
+    residual = jnp.where(jnp.all(jnp.isfinite(r)), jnp.max(jnp.abs(r)), jnp.inf)
+    return x, state, Stats(jnp.asarray(k), residual, result)
+
+
+def _zero_tangent(x):
+    x = jnp.asarray(x)
+    if jnp.issubdtype(x.dtype, jnp.inexact):
+        return jnp.zeros_like(x)
+    return np.zeros(x.shape, dtype=jax.dtypes.float0)
+
+
+def implicit_root(solver, residual, linear_solver=None):
+    """Wrap ``solver(params) -> (x, aux)`` so that ``x`` is differentiated implicitly.
+
+    At the returned root of ``residual(x, aux, params) = 0`` (``x`` 1-D; ``aux`` anything the
+    solver found that the residual needs frozen, such as an active set, plus statistics),
+
+        dx = -J^{-1} (d residual / d params) dparams,    J = d residual / d x.
+
+    The linear solve at the root is ``lax.custom_linear_solve``, so forward mode (``jvp``,
+    ``jacfwd``) and reverse mode (``grad``, ``vjp``: one transposed solve) both work.
+    ``linear_solver=None`` factors a dense ``J`` from ``jacfwd`` (systems of up to a few
+    thousand unknowns); otherwise ``linear_solver(x, aux, params)`` returns matrix-free
+    ``(solve, transpose_solve)``, each ``b -> J^{-1} b`` resp. ``J^{-T} b``. ``aux`` gets zero
+    tangents. Nothing is differentiated through the iterations; at an unconverged point the
+    derivative is that of the linearization there (meaningful only when converged).
+    ``params`` is a PyTree of arrays; pass static configuration by closure.
+    """
+
+    @jax.custom_jvp
+    def solve(params):
+        return solver(params)
+
+    @solve.defjvp
+    def _jvp(primals, tangents):
+        (params,), (dparams,) = primals, tangents
+        x, aux = solve(params)
+        at_root = lambda xx: residual(xx, aux, params)
+        _, dr = jax.jvp(lambda p: residual(x, aux, p), (params,), (dparams,))
+        matvec = lambda v: jax.jvp(at_root, (x,), (v,))[1]
+        if linear_solver is None:
+            lu = jax.scipy.linalg.lu_factor(jax.jacfwd(at_root)(x))
+            forward = lambda b: jax.scipy.linalg.lu_solve(lu, b)
+            transpose = lambda b: jax.scipy.linalg.lu_solve(lu, b, trans=1)
+        else:
+            forward, transpose = linear_solver(x, aux, params)
+        dx = jax.lax.custom_linear_solve(matvec, -dr, lambda _, b: forward(b), lambda _, b: transpose(b))
+        return (x, aux), (dx, jax.tree_util.tree_map(_zero_tangent, aux))
+
+    return solve
+
+
+def bisect(fn, lo, hi, iterations: int):
+    """Roots of ``fn`` (element-wise) bracketed by ``lo`` and ``hi``; ``iterations`` halvings.
+
+    ``fn(lo)`` and ``fn(hi)`` must have opposite signs element-wise. No derivative flows
+    through it (take one Newton step, or :func:`implicit_root`, for that).
+    """
+    sign_lo = jnp.sign(fn(lo))
+
+    def halve(_, bounds):
+        a, b = bounds
+        mid = 0.5 * (a + b)
+        same = jnp.sign(fn(mid)) == sign_lo
+        return jnp.where(same, mid, a), jnp.where(same, b, mid)
+
+    a, b = jax.lax.fori_loop(0, iterations, halve, (lo, hi))
+    return 0.5 * (a + b)

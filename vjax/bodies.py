@@ -1,0 +1,83 @@
+"""Bodies: what each ring of a scene is made of and how it is held.
+
+A :class:`Body` pairs a :class:`~vjax.Material` with a geometry whose Green's function gives
+its ring operator (:meth:`Body.operator`). Scenes take bodies (or a bare Material, meaning
+the thesis's body for that ring, or None for a rigid one).
+
+- :func:`hole`: a hole in an infinite plane (A.45); ``ref_length`` fixes its rigid mode 1.
+- :func:`disc`: a solid cylinder fixed at its centre (A.60); ``ref_length`` likewise.
+- :func:`half_plane`: the elastic half-plane on the ring's arc length (Chapter 3, Fig. 3.4).
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import jax
+
+from . import _checks
+from .material import Material
+from .operator import ring_operator
+
+_GREEN = {"hole": "hole", "disc": "cylinder", "half_plane": "half_plane"}
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Body:
+    """A ring body: ``material``, ``kind`` (static) and its geometric parameters (m)."""
+
+    material: Material
+    ref_length: jax.Array | None = None
+    thickness: jax.Array | None = None
+    kind: str = dataclasses.field(default="hole", metadata=dict(static=True))
+
+    def operator(self, R, n: int, omega=0.0, memory="periodic"):
+        """Steady-state operator u = M sigma on the loaded surface of radius ``R`` (m), ``n``
+        elements, for a pressure pattern moving at ``omega`` (rad/s) relative to the body."""
+        return ring_operator(_GREEN[self.kind], self.material, R, n, omega, memory, self.ref_length)
+
+    def at_temperature(self, shift, T) -> "Body":
+        """The same body with its material at temperature ``T`` (C), see
+        :meth:`Material.at_temperature`."""
+        return dataclasses.replace(self, material=self.material.at_temperature(shift, T))
+
+
+def _with_ref_length(kind, material, ref_length):
+    _checks.instance("material", material, Material, "a vjax.Material")
+    _checks.positive("ref_length", ref_length)
+    _checks.scalar("ref_length", ref_length)
+    return Body(material, ref_length=ref_length, kind=kind)
+
+
+def hole(material: Material, ref_length=1.0) -> Body:
+    """A hole in an infinite plane of ``material`` (A.45). ``ref_length`` (m): the distance
+    at which the plane is held (the thesis's log R with R in metres: 1 m)."""
+    return _with_ref_length("hole", material, ref_length)
+
+
+def disc(material: Material, ref_length=1.0) -> Body:
+    """A solid cylinder of ``material`` fixed at its centre (A.60); ``ref_length`` as for
+    :func:`hole`."""
+    return _with_ref_length("disc", material, ref_length)
+
+
+def half_plane(material: Material, ref_length=1.0) -> Body:
+    """An elastic half-plane of ``material`` on the ring's arc length; ``ref_length`` (m) is
+    the additive constant of its log kernel (not stated in the thesis)."""
+    return _with_ref_length("half_plane", material, ref_length)
+
+
+def as_body(name: str, x, default, allowed) -> Body | None:
+    """A scene's body argument: None (rigid) stays None, a bare Material becomes
+    ``default(x)``, a Body must be of a kind in ``allowed``."""
+    if x is None:
+        return None
+    if isinstance(x, Material):
+        return default(x)
+    if isinstance(x, Body):
+        if x.kind not in allowed:
+            raise ValueError(f"{name} must be one of the bodies {', '.join(allowed)} (or a Material, or None "
+                             f"for rigid), got a {x.kind}")
+        return x
+    raise ValueError(f"{name} must be a vjax body ({', '.join(allowed)}), a vjax.Material or None (rigid), "
+                     f"got {type(x).__name__}")
