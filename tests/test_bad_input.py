@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import Arrhenius, Material, SolverOptions, WLF
+from vjax import Arrhenius, ContactOptions, Material, WLF
 from experiments import _common
 from fitting import calibrate, dma, io, master
 from fitting.cli import main as cli
@@ -49,23 +49,23 @@ D64 = jnp.where(jnp.arange(64) < 3, 1e-6, -1e-6)
 
 
 def _pin(**kw):
-    a = dict(material=M, R=0.08, R_pin=0.075, load=PIN_LOAD, omega=0.0, n=64)
+    a = dict(housing=M, R=0.08, radial_clearance=0.005, load=PIN_LOAD, options=vjax.PinOptions(n=64))
     a.update(kw)
-    return vjax.pin_in_hole(a.pop("material"), a.pop("R"), a.pop("R_pin"), a.pop("load"), a.pop("omega"), **a)
+    return vjax.pin_in_hole(a.pop("housing"), a.pop("R"), a.pop("radial_clearance"), a.pop("load"), **a)
 
 
 def _journal(**kw):
-    a = dict(R_bearing=0.05, clearance=5e-5, viscosity=0.01, omega_journal=100.0, load=2e4, n=64)
+    a = dict(R=0.05, radial_clearance=5e-5, viscosity=0.01, load=2e4, omega_shaft=100.0,
+             options=vjax.JournalOptions(n=64))
     a.update(kw)
-    return vjax.journal_bearing(a.pop("R_bearing"), a.pop("clearance"), a.pop("viscosity"), a.pop("omega_journal"),
-                                **a)
+    return vjax.journal_bearing(a.pop("R"), a.pop("radial_clearance"), a.pop("viscosity"), a.pop("load"), **a)
 
 
 def _roller(**kw):
-    a = dict(outer=M, inner=M, R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, load=ROLLER_LOAD,
-             n=64)
+    a = dict(housing=M, shaft=M, R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, load=ROLLER_LOAD,
+             options=vjax.RollerOptions(n=64))
     a.update(kw)
-    return vjax.roller_bearing(a.pop("outer"), a.pop("inner"), a.pop("R_outer"), a.pop("R_inner"),
+    return vjax.roller_bearing(a.pop("housing"), a.pop("shaft"), a.pop("R_outer"), a.pop("R_inner"),
                                a.pop("roller_diameter"), a.pop("n_rollers"), a.pop("load"), **a)
 
 
@@ -128,72 +128,82 @@ CASES = [
     ("contact-q0-nan", lambda: vjax.solve_contact(_op(), _d_load, D64, q0=jnp.array([NAN]), force=_force, F=1.0), r"q0 must be finite"),
     ("contact-sigma_init-shape", lambda: vjax.solve_contact(_op(), _d, D64, sigma_init=jnp.ones(5)), r"sigma_init must have shape \(64,\)"),
     ("contact-sigma_init-inf", lambda: vjax.solve_contact(_op(), _d, D64, sigma_init=jnp.full(64, jnp.inf)), r"sigma_init must be finite"),
-    ("contact-options-dict", lambda: vjax.solve_contact(_op(), _d, D64, options={"tol": 1e-8}), r"options must be a vjax.SolverOptions"),
-    ("options-tol-negative", lambda: SolverOptions(tol=-1.0), r"tol must be a finite number > 0"),
-    ("options-tol-nan", lambda: SolverOptions(tol=NAN), r"tol must be a finite number > 0"),
-    ("options-krylov_tol-zero", lambda: SolverOptions(krylov_tol=0.0), r"krylov_tol must be a finite number > 0"),
-    ("options-max_iter-zero", lambda: SolverOptions(max_iter=0), r"max_iter must be an integer >= 1"),
-    ("options-krylov-float", lambda: SolverOptions(krylov=10.5), r"krylov must be an integer >= 1"),
-    ("options-krylov_method", lambda: SolverOptions(krylov_method="cg"), r"krylov_method must be one of"),
+    ("contact-options-dict", lambda: vjax.solve_contact(_op(), _d, D64, options={"tol": 1e-8}), r"options must be a vjax.ContactOptions"),
+    ("options-tol-negative", lambda: ContactOptions(tol=-1.0), r"tol must be a finite number > 0"),
+    ("options-tol-nan", lambda: ContactOptions(tol=NAN), r"tol must be a finite number > 0"),
+    ("options-krylov_tol-zero", lambda: ContactOptions(krylov_tol=0.0), r"krylov_tol must be a finite number > 0"),
+    ("options-max_iter-zero", lambda: ContactOptions(max_iter=0), r"max_iter must be an integer >= 1"),
+    ("options-krylov-float", lambda: ContactOptions(krylov=10.5), r"krylov must be an integer >= 1"),
+    ("options-krylov_method", lambda: ContactOptions(krylov_method="cg"), r"krylov_method must be one of"),
+    # ---- bodies
+    ("hole-ref-length", lambda: vjax.hole(M, ref_length=-1.0), r"ref_length must be > 0"),
+    ("hole-material", lambda: vjax.hole("rubber"), r"material must be a vjax.Material"),
     # ---- pin in hole
-    ("pin-larger-than-hole", lambda: _pin(R_pin=0.09), r"R_pin must be smaller than the hole radius R"),
-    ("pin-equal-to-hole", lambda: _pin(R_pin=0.08), r"R_pin must be smaller"),
+    ("pin-larger-than-hole", lambda: _pin(radial_clearance=0.09), r"radial_clearance must be smaller than the bore radius R"),
+    ("pin-equal-to-hole", lambda: _pin(radial_clearance=0.08), r"radial_clearance must be smaller"),
     ("pin-R-zero", lambda: _pin(R=0.0), r"R must be > 0"),
-    ("pin-R_pin-negative", lambda: _pin(R_pin=-0.075), r"R_pin must be > 0"),
+    ("pin-clearance-negative", lambda: _pin(radial_clearance=-0.005), r"radial_clearance must be > 0"),
     ("pin-load-zero", lambda: _pin(load=0.0), r"load must be > 0"),
     ("pin-load-nan", lambda: _pin(load=NAN), r"load must be finite"),
     ("pin-load-shape", lambda: _pin(load=np.array([PIN_LOAD, PIN_LOAD])), r"load must be a scalar"),
     ("pin-R-shape", lambda: _pin(R=np.array([0.08, 0.09])), r"R must be a scalar"),
-    ("pin-omega-inf", lambda: _pin(omega=INF), r"omega must be finite"),
-    ("pin-n-small", lambda: _pin(n=3), r"n \(number of elements\)"),
-    ("pin-n-float", lambda: _pin(n=64.0), r"n \(number of elements\)"),
-    ("pin-material-none", lambda: _pin(material=None), r"material must be a vjax.Material"),
+    ("pin-omega-inf", lambda: _pin(omega_shaft=INF), r"omega_shaft must be finite"),
+    ("pin-n-small", lambda: vjax.PinOptions(n=3), r"n must be an integer >= 16"),
+    ("pin-n-float", lambda: vjax.PinOptions(n=64.0), r"n must be an integer >= 16"),
+    ("pin-housing-none", lambda: _pin(housing=None), r"housing must be a deformable body"),
+    ("pin-housing-disc", lambda: _pin(housing=vjax.disc(M)), r"housing must be one of the bodies hole"),
     ("pin-memory", lambda: _pin(memory="x"), r"memory must be one of"),
-    ("pin-ref-length", lambda: _pin(ref_length=-1.0), r"ref_length must be > 0"),
-    ("pin-options", lambda: _pin(options=None), r"options must be a vjax.SolverOptions"),
+    ("pin-options", lambda: _pin(options=None), r"options must be a vjax.PinOptions"),
+    ("pin-initial", lambda: _pin(initial="x"), r"initial must be a PinResult"),
+    ("pin-temperature-nan", lambda: _pin(temperature=NAN, shift=WLF(8.0, 100.0, 25.0)), r"temperature must be finite"),
     # ---- journal bearing
-    ("journal-R-nan", lambda: _journal(R_bearing=NAN), r"R_bearing must be finite"),
-    ("journal-clearance-above-R", lambda: _journal(clearance=0.06), r"clearance must be < R_bearing"),
-    ("journal-clearance-zero", lambda: _journal(clearance=0.0), r"clearance must be > 0"),
+    ("journal-R-nan", lambda: _journal(R=NAN), r"R must be finite"),
+    ("journal-clearance-above-R", lambda: _journal(radial_clearance=0.06), r"radial_clearance must be < R"),
+    ("journal-clearance-zero", lambda: _journal(radial_clearance=0.0), r"radial_clearance must be > 0"),
     ("journal-viscosity-zero", lambda: _journal(viscosity=0.0), r"viscosity must be > 0"),
-    ("journal-omega-inf", lambda: _journal(omega_journal=INF), r"omega_journal must be finite"),
-    ("journal-zero-entrainment", lambda: _journal(omega_journal=0.0), r"zero entrainment speed"),
-    ("journal-load-missing", lambda: _journal(load=None), r"load .* is required"),
+    ("journal-omega-inf", lambda: _journal(omega_shaft=INF), r"omega_shaft must be finite"),
+    ("journal-zero-entrainment", lambda: _journal(omega_shaft=0.0), r"zero entrainment speed"),
     ("journal-load-shape", lambda: _journal(load=[1.0, 2.0, 3.0]), r"load must be a magnitude or a vector"),
     ("journal-load-nan", lambda: _journal(load=[NAN, 1.0]), r"load must be finite"),
     ("journal-load-zero-vector", lambda: _journal(load=[0.0, 0.0]), r"load must be a non-zero vector"),
     ("journal-load-negative", lambda: _journal(load=-2e4), r"load must be > 0"),
-    ("journal-R-shape", lambda: _journal(R_bearing=np.array([0.05, 0.06])), r"R_bearing must be a scalar"),
-    ("journal-n-odd", lambda: _journal(n=63), r"n must be an even integer >= 16"),
-    ("journal-green", lambda: _journal(green="flat"), r"green must be one of"),
+    ("journal-R-shape", lambda: _journal(R=np.array([0.05, 0.06])), r"R must be a scalar"),
+    ("journal-n-odd", lambda: vjax.JournalOptions(n=63), r"n must be even"),
+    ("journal-housing-disc", lambda: _journal(housing=vjax.disc(M)), r"housing must be one of the bodies hole, half_plane"),
     ("journal-cavitation", lambda: _journal(cavitation="none"), r"cavitation must be one of"),
-    ("journal-solver", lambda: _journal(solver="x"), r"solver must be one of"),
-    ("journal-bearing-type", lambda: _journal(bearing="steel"), r"bearing must be a vjax.Material"),
+    ("journal-strategy", lambda: vjax.JournalOptions(strategy="x"), r"strategy must be one of"),
+    ("journal-housing-type", lambda: _journal(housing="steel"), r"housing must be a vjax body"),
     ("journal-memory", lambda: _journal(memory=-1), r"memory .* > 0"),
     ("journal-supply-negative", lambda: _journal(supply_pressure=-1.0), r"supply_pressure must be >= 0"),
-    ("journal-tol-negative", lambda: _journal(tol=-1.0), r"tol must be a finite number > 0"),
-    ("journal-tol-nan", lambda: _journal(tol=NAN), r"tol must be a finite number > 0"),
-    ("journal-initial-type", lambda: _journal(initial="x"), r"initial must be a JournalSolution"),
-    ("journal-stages-zero", lambda: _journal(stages=0), r"stages must be an integer >= 1"),
-    ("journal-maxiter-zero", lambda: _journal(maxiter=0), r"maxiter must be an integer >= 1"),
+    ("journal-tol-negative", lambda: vjax.JournalOptions(tol=-1.0), r"tol must be a finite number > 0"),
+    ("journal-tol-nan", lambda: vjax.JournalOptions(tol=NAN), r"tol must be a finite number > 0"),
+    ("journal-initial-type", lambda: _journal(initial="x"), r"initial must be a JournalResult"),
+    ("journal-stages-zero", lambda: vjax.JournalOptions(stages=0), r"stages must be an integer >= 1"),
+    ("journal-max_iter-zero", lambda: vjax.JournalOptions(max_iter=0), r"max_iter must be an integer >= 1"),
+    ("journal-options", lambda: _journal(options=vjax.PinOptions()), r"options must be a vjax.JournalOptions"),
     # ---- roller bearing
     ("roller-too-many-rollers", lambda: _roller(n_rollers=40), r"n_rollers=40 rollers .* do not fit"),
-    ("roller-clearance-below-minus-D", lambda: _roller(clearance=-3e-3), r"clearance must exceed -roller_diameter"),
-    ("roller-clearance-nan", lambda: _roller(clearance=NAN), r"clearance must be finite"),
+    ("roller-clearance-below-minus-D", lambda: _roller(diametral_clearance=-3e-3), r"diametral_clearance must exceed -roller_diameter"),
+    ("roller-clearance-nan", lambda: _roller(diametral_clearance=NAN), r"diametral_clearance must be finite"),
     ("roller-clearance-exceeds-D", lambda: _roller(roller_diameter=0.9e-3), r"roller_diameter=.* less than half the radial space"),
     ("roller-inner-larger-than-outer", lambda: _roller(R_outer=4e-3, R_inner=6e-3), r"R_inner must be smaller than R_outer"),
     ("roller-load-zero", lambda: _roller(load=0.0), r"load must be > 0"),
     ("roller-load-nan", lambda: _roller(load=NAN), r"load must be finite"),
     ("roller-one-roller", lambda: _roller(n_rollers=1), r"n_rollers must be an integer >= 2"),
     ("roller-n_rollers-float", lambda: _roller(n_rollers=9.0), r"n_rollers must be an integer"),
-    ("roller-both-rigid", lambda: _roller(outer=None, inner=None), r"outer and inner cannot both be None"),
-    ("roller-outer-type", lambda: _roller(outer="steel"), r"outer must be a vjax.Material"),
+    ("roller-both-rigid", lambda: _roller(housing=None, shaft=None), r"housing and shaft cannot both be None"),
+    ("roller-housing-type", lambda: _roller(housing="steel"), r"housing must be a vjax body"),
     ("roller-memory", lambda: _roller(memory="y"), r"memory must be one of"),
     ("roller-temperature-without-shift", lambda: _roller(temperature=30.0), r"temperature and shift must be given together"),
     ("roller-shift-type", lambda: _roller(temperature=30.0, shift="WLF"), r"shift must be a shift law"),
-    ("roller-n-small", lambda: _roller(n=8), r"n \(elements per ring\)"),
-    ("roller-omega-nan", lambda: _roller(omega_inner=NAN), r"omega_inner must be finite"),
+    ("roller-n-small", lambda: vjax.RollerOptions(n=8), r"n must be an integer >= 16"),
+    ("roller-omega-nan", lambda: _roller(omega_shaft=NAN), r"omega_shaft must be finite"),
     ("roller-R-negative", lambda: _roller(R_inner=-4e-3), r"R_inner must be > 0"),
+    ("roller-tol-negative", lambda: vjax.RollerOptions(tol=-1.0), r"tol must be a finite number > 0"),
+    ("roller-max_iter-zero", lambda: vjax.RollerOptions(max_iter=0), r"max_iter must be an integer >= 1"),
+    ("roller-load-shape", lambda: _roller(load=np.array([ROLLER_LOAD, ROLLER_LOAD])), r"load must be a scalar"),
+    ("roller-options", lambda: _roller(options=None), r"options must be a vjax.RollerOptions"),
+    ("roller-initial", lambda: _roller(initial="x"), r"initial must be a RollerResult"),
     # ---- fitting
     ("dma-kind", lambda: dma.read(dma.default_data(), kind="X"), r"kind must be 'E' or 'G'"),
     ("dma-from_arrays-nan", lambda: dma.from_arrays([20.0], [1.0], [NAN], [1.0]), r"storage must be finite"),
@@ -208,10 +218,6 @@ CASES = [
 ]
 
 CASES += [
-    ("roller-tol-negative", lambda: _roller(tol=-1.0), r"tol must be a finite number > 0"),
-    ("roller-max_iter-zero", lambda: _roller(max_iter=0), r"max_iter must be an integer >= 1"),
-    ("roller-load-shape", lambda: _roller(load=np.array([ROLLER_LOAD, ROLLER_LOAD])), r"load must be a scalar"),
-    ("roller-options", lambda: _roller(options=None), r"options must be a vjax.SolverOptions"),
 ]
 
 
