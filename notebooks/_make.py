@@ -81,16 +81,15 @@ else:
     print(report.table())
 mat2, shift2, kind = fitting.load_material(json_path)
 print("reloaded:", kind, "E0 =", float(mat2.E0), "Pa,", mat2.moduli.shape[0], "terms,", type(shift2).__name__)'''),
-    ("md", "## Use it in a scene\n\nThe material at 60 C is `material.at_temperature(shift, 60.0)`. "
-           "Friction torque of a polymer pin joint (rigid pin in a plate of this material) versus "
-           "shaft speed, vmapped over speeds:"),
+    ("md", "## Use it in a scene\n\nEvery scene takes `temperature=` and `shift=` (the material at 60 C "
+           "alone is `material.at_temperature(shift, 60.0)`). Friction torque of a polymer pin joint "
+           "(rigid pin in a plate of this material) versus shaft speed, vmapped over speeds:"),
     ("code", '''R, R_pin = 0.01, 0.0099
 load = 1e-2 * float(mat2.E0) * R
 rpm = np.geomspace(10, 3000, 5 if QUICK else 20)
 def torque(rpm_, T):
-    m = mat2.at_temperature(shift2, T)
-    w = vjax.pin_patch_speed(rpm_ * 2 * np.pi / 60, R, R_pin)
-    return vjax.pin_in_hole(m, R, R_pin, load, omega=w, n=64 if QUICK else 256, throw=False).torque
+    return vjax.pin_in_hole(mat2, R, R - R_pin, load, omega_shaft=rpm_ * 2 * np.pi / 60, temperature=T,
+                            shift=shift2, options=vjax.PinOptions(n=64 if QUICK else 256), throw=False).torque
 fig, ax = plt.subplots()
 for T in (40.0, 70.0):
     tq = jax.jit(jax.vmap(lambda s: torque(s, T)))(jnp.asarray(rpm))
@@ -109,10 +108,12 @@ NB2 = [
 R_O, R_I, D, Z = 6e-3, 4e-3, 2e-3, 9
 load = 6.5e-3 * 1e6 * R_O
 n = 64 if QUICK else 256
-r = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_inner=10.0, n=n)
+opts = vjax.RollerOptions(n=n)
+r = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_shaft=10.0, options=opts)
+print(r.summary())
 print("converged:", bool(r.converged), "Newton iterations:", int(r.iterations))
 print("roller loads (N/m):", np.round(np.asarray(r.roller_loads[0]), 2))
-print("friction torque on the outer ring (N m/m):", float(r.torque[0]))'''),
+print("friction torque on the outer ring (N m/m):", float(r.torque))'''),
     ("code", '''fig, ax = plt.subplots(subplot_kw={"projection": "polar"})
 ax.plot(np.asarray(r.theta[0]), np.asarray(r.pressure[0]) / 1e6, label="outer ring")
 ax.plot(np.asarray(r.theta[1]), np.asarray(r.pressure[1]) / 1e6, label="inner ring")
@@ -124,8 +125,8 @@ fig.savefig(os.path.join(OUT, "02_pressure.png"), dpi=100)'''),
     ("code", '''speeds = np.geomspace(1.0, 300.0, 3 if QUICK else 12)     # shaft speed, rad/s
 torques, prev = [], None
 for w in speeds:
-    prev = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_inner=float(w), n=n, initial=prev)
-    torques.append(float(prev.torque[0]))
+    prev = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, omega_shaft=float(w), options=opts, initial=prev)
+    torques.append(float(prev.torque))
 fig, ax = plt.subplots()
 wt = np.abs(np.asarray([vjax.roller_patch_speeds(w, 0.0, R_I, R_O)[1] for w in speeds])) * 0.01
 ax.semilogx(wt, torques, "o-")
@@ -142,11 +143,11 @@ fig.savefig(os.path.join(OUT, "02_torque_speed.png"), dpi=100)'''),
            "one compiled function gives it, the torque, the peak pressure and the gradient with "
            "respect to the diametral clearance (negative = preload) and the shaft speed."),
     ("code", '''p_max = 1.2 * float(jnp.max(r.pressure))              # allowed peak pressure (Pa)
-scale = abs(float(r.torque[0]))
+scale = abs(float(r.torque))
 def objective(clearance, omega):
-    res = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, clearance=clearance, omega_inner=omega, n=n,
-                              throw=False)
-    tq, peak = jnp.abs(res.torque[0]), jnp.max(res.pressure)
+    res = vjax.roller_bearing(m, m, R_O, R_I, D, Z, load, diametral_clearance=clearance, omega_shaft=omega,
+                              options=opts, throw=False)
+    tq, peak = jnp.abs(res.torque), jnp.max(res.pressure)
     return tq + 10.0 * scale * jnp.maximum(peak / p_max - 1.0, 0.0) ** 2, (tq, peak)
 grad_fn = jax.jit(jax.value_and_grad(objective, argnums=(0, 1), has_aux=True))
 (f0, (tq0, pk0)), (df_dc, df_dw) = grad_fn(0.0, 30.0)
@@ -179,10 +180,12 @@ NB3 = [
 R_B, c, eta = 0.1, 5e-4, 1e-3
 load = 2.2e-3 * 1e6 * R_B
 n = 64 if QUICK else 256
-sol = vjax.journal_bearing(R_B, c, eta, omega_journal=-0.4, omega_bearing=0.2, load=load, bearing=bearing, n=n)
+opts = vjax.JournalOptions(n=n)
+sol = vjax.journal_bearing(R_B, c, eta, load, housing=bearing, omega_shaft=-0.4, omega_housing=0.2, options=opts)
+print(sol.summary())
 print("converged:", bool(sol.converged), "| eps =", float(sol.eccentricity),
       "| effective eps =", float(sol.eccentricity_effective))
-print("min film (um):", 1e6 * float(sol.min_film), "| bearing torque (N m/m):", float(sol.torque_bearing),
+print("min film (um):", 1e6 * float(sol.min_film), "| bearing torque (N m/m):", float(sol.torque),
       "| viscoelastic part:", float(sol.torque_viscoelastic))'''),
     ("code", '''th = np.asarray(sol.theta)
 fig, ax = plt.subplots(1, 2, figsize=(11, 4))
@@ -196,12 +199,12 @@ fig.savefig(os.path.join(OUT, "03_profiles.png"), dpi=100)'''),
     ("code", '''wj = -np.geomspace(0.4, 1.6, 3 if QUICK else 10)
 rows, prev = [], sol
 for w in wj:
-    s = vjax.journal_bearing(R_B, c, eta, omega_journal=float(w), omega_bearing=0.2, load=load,
-                             bearing=bearing, n=n, initial=prev, throw=False)
+    s = vjax.journal_bearing(R_B, c, eta, load, housing=bearing, omega_shaft=float(w), omega_housing=0.2,
+                             options=opts, initial=prev, throw=False)
     print(f"omega_J = {w:.3f}: converged {bool(s.converged)}")
     if bool(s.converged):
         prev = s
-        rows.append((float(w), float(s.min_film), float(s.torque_bearing), float(s.torque_viscoelastic)))
+        rows.append((float(w), float(s.min_film), float(s.torque), float(s.torque_viscoelastic)))
 rows = np.array(rows)
 fig, ax = plt.subplots()
 ax.plot(-rows[:, 0], rows[:, 2], "o-", label="bearing torque")
@@ -213,9 +216,10 @@ print(rows)'''),
            "of the clearance and the viscosity, with their gradients (implicit differentiation "
            "through the coupled Reynolds-elasticity Newton solve)."),
     ("code", '''def loss_and_film(log_c, log_eta):
-    s = vjax.journal_bearing(R_B, jnp.exp(log_c), jnp.exp(log_eta), omega_journal=-0.4, omega_bearing=0.2,
-                             load=load, bearing=bearing, n=n, throw=False, solver="newton", initial=sol)
-    power = s.dissipation_fluid + s.dissipation_bearing
+    s = vjax.journal_bearing(R_B, jnp.exp(log_c), jnp.exp(log_eta), load, housing=bearing, omega_shaft=-0.4,
+                             omega_housing=0.2, options=vjax.JournalOptions(n=n, strategy="newton"), initial=sol,
+                             throw=False)
+    power = s.dissipation_fluid + s.dissipation_housing
     return power, s.min_film
 x = (jnp.log(c), jnp.log(eta))
 (power, film) = loss_and_film(*x)

@@ -123,7 +123,7 @@ def test_reference_length_dependence_is_a_finite_displacement_effect():
     geometry / slope terms shift the pressure by O(1%): documented, not hidden."""
     m = vjax.Material.elastic(E, NU)
     F = 2.3e-2 * E * R
-    r1 = vjax.pin_in_hole(m, R, R - DR, F, 0.0, n=N)
+    r1 = vjax.pin_in_hole(m, R, DR, F, options=vjax.PinOptions(n=N))
     b = P.persson_b_from_load(F, E, R, DR)
     peak = P.persson_pressure(np.array([0.0]), b, E, R, DR)[0]
     assert float(r1.pin_offset) > 10 * DR

@@ -82,7 +82,8 @@ def test_scene_sweep_matches_vmap():
     m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)
 
     def torque(p):
-        r = vjax.pin_in_hole(m, 0.08, 0.075, p["load"], omega=p["omega"], n=64, throw=False)
+        r = vjax.pin_in_hole(m, 0.08, 0.005, p["load"], omega_shaft=p["omega"], options=vjax.PinOptions(n=64),
+                             throw=False)
         return {"torque": r.torque, "converged": r.converged}
 
     params = {"omega": jnp.linspace(1.0, 300.0, 5), "load": jnp.linspace(2000.0, 3000.0, 5)}
