@@ -192,13 +192,14 @@ def implicit_root(solver, residual, linear_solver=None):
     return solve
 
 
-def bisect(fn, lo, hi, iterations: int):
+def bisect(fn, lo, hi, iterations: int, sign_lo=None):
     """Roots of ``fn`` (element-wise) bracketed by ``lo`` and ``hi``; ``iterations`` halvings.
 
-    ``fn(lo)`` and ``fn(hi)`` must have opposite signs element-wise. No derivative flows
-    through it (take one Newton step, or :func:`implicit_root`, for that).
+    ``fn(lo)`` and ``fn(hi)`` must have opposite signs element-wise; give ``sign_lo`` (+1 or
+    -1) when ``fn`` cannot be evaluated at ``lo`` (a pole). ``fn`` is evaluated at midpoints
+    only otherwise. No derivative flows through it (wrap it in :func:`implicit_root`).
     """
-    sign_lo = jnp.sign(fn(lo))
+    sign_lo = jnp.sign(fn(lo)) if sign_lo is None else sign_lo
 
     def halve(_, bounds):
         a, b = bounds

@@ -34,7 +34,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks
+from . import _checks, _solve
 
 GAS_CONSTANT = 8.314462618  # J/(mol K)
 KELVIN = 273.15
@@ -201,40 +201,27 @@ class Material:
 @partial(jax.jit, static_argnums=1)
 def _creep_spectrum(mat: Material, iterations: int) -> CreepSpectrum:
     """See :meth:`Material.creep_spectrum`."""
-    order = jnp.argsort(mat.times)
-    tau, Ek = mat.times[order], mat.moduli[order]
+    order = jnp.argsort(jax.lax.stop_gradient(mat.times))
+    mat = dataclasses.replace(mat, moduli=mat.moduli[order], times=mat.times[order])
 
-    def laplace_modulus(s):
-        # E(s) for s on the negative axis, one s per interval (broadcast against tau).
-        st = s[:, None] * tau
-        return mat.E0 + jnp.sum(Ek * st / (1.0 + st), axis=-1)
-
-    def slope(s):
-        return jnp.sum(Ek * tau / (1.0 + s[:, None] * tau) ** 2, axis=-1)
+    def modulus(x, m):
+        # E(s) at s = -exp(x) on the negative axis, one s per interval (broadcast against tau).
+        st = -jnp.exp(x)[:, None] * m.times
+        return m.E0 + jnp.sum(m.moduli * st / (1.0 + st), axis=-1)
 
     # Interval k lies between -1/tau_k and -1/tau_{k+1} (or 0 for the last one): in
     # x = log(-s), between log(1/tau_{k+1}) (E -> +inf side, or -inf log for s -> 0)
-    # and log(1/tau_k) (E -> -inf side).
-    tau_s = jax.lax.stop_gradient(tau)
-    x_hi = -jnp.log(tau_s)                                   # pole: E(s) -> -inf just right of it
-    x_lo = jnp.concatenate([-jnp.log(tau_s[1:]), (-jnp.log(tau_s[-1:]) - 60.0)])
-    mat_s = jax.lax.stop_gradient(mat)
+    # and log(1/tau_k), a pole (E -> -inf side). E decreases with x: E > 0 at the low end.
+    def bracketed_roots(m):
+        x_hi = -jnp.log(m.times)
+        x_lo = jnp.concatenate([x_hi[1:], x_hi[-1:] - 60.0])
+        return _solve.bisect(lambda x: modulus(x, m), x_lo, x_hi, iterations, sign_lo=1.0), None
 
-    def bisect(_, bounds):
-        lo, hi = bounds
-        mid = 0.5 * (lo + hi)
-        s = -jnp.exp(mid)
-        st = s[:, None] * tau_s
-        e = mat_s.E0 + jnp.sum(mat_s.moduli[order] * st / (1.0 + st), axis=-1)
-        # E increases with s, i.e. decreases with x: E > 0 means the root is at larger x.
-        return jnp.where(e > 0, mid, lo), jnp.where(e > 0, hi, mid)
-
-    lo, hi = jax.lax.fori_loop(0, iterations, bisect, (x_lo, x_hi))
-    s0 = jax.lax.stop_gradient(-jnp.exp(0.5 * (lo + hi)))
-    s = s0 - laplace_modulus(s0) / slope(s0)  # exact first derivative, value unchanged to O(err^2)
+    x, _ = _solve.implicit_root(bracketed_roots, lambda x, _, m: modulus(x, m))(mat)
+    s = -jnp.exp(x)
     lam = -1.0 / s
-    C = lam / slope(s)
-    return CreepSpectrum(1.0 / mat.Einf, C, lam)
+    slope = jnp.sum(mat.moduli * mat.times / (1.0 + s[:, None] * mat.times) ** 2, axis=-1)
+    return CreepSpectrum(1.0 / mat.Einf, lam / slope, lam)
 
 
 # ---- time-temperature shift laws ----------------------------------------------------
