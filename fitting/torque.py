@@ -200,31 +200,33 @@ def write_torque_csv(path, data: TorqueData, comments=()) -> None:
 
 # ---- bearing models --------------------------------------------------------------------
 def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, n=256, memory="periodic",
-                 clearance=None):
+                 diametral_clearance=None):
     """Needle roller bearing (:func:`vjax.roller_bearing`), both rings of the fitted material,
     outer ring fixed, shaft (inner ring) at the given rpm; returns the friction torque on the
     outer ring (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
+    options = vjax.RollerOptions(n=n)
+
     def model(material, shift, rpm, T, load):
-        m = material.at_temperature(shift, T)
-        r = vjax.roller_bearing(m, m, R_outer, R_inner, roller_diameter, n_rollers, load,
-                                omega_inner=rpm * (2 * jnp.pi / 60.0), clearance=clearance, memory=memory, n=n,
-                                throw=False)
-        return r.torque[0], r.converged
+        r = vjax.roller_bearing(material, material, R_outer, R_inner, roller_diameter, n_rollers, load,
+                                omega_shaft=rpm * (2 * jnp.pi / 60.0), diametral_clearance=diametral_clearance,
+                                memory=memory, temperature=T, shift=shift, options=options, throw=False)
+        return r.torque, r.converged
     model.scene = (f"roller_bearing(R_O={R_outer}, R_I={R_inner}, D={roller_diameter}, Z={n_rollers}, n={n}, "
-                   f"memory={memory!r}, clearance={clearance})")
+                   f"memory={memory!r}, diametral_clearance={diametral_clearance})")
     return model
 
 
-def pin_model(R=0.01, R_pin=0.0099, n=128, memory="periodic"):
-    """Polymer pin joint (:func:`vjax.pin_in_hole`): rigid pin of radius R_pin turning at the
-    given rpm in a hole of radius R in a plate of the fitted material; returns the friction
-    torque (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
+def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic"):
+    """Polymer pin joint (:func:`vjax.pin_in_hole`): rigid pin of radius R - radial_clearance
+    turning at the given rpm in a hole of radius R in a plate of the fitted material; returns
+    the friction torque (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
+    options = vjax.PinOptions(n=n)
+
     def model(material, shift, rpm, T, load):
-        m = material.at_temperature(shift, T)
-        w = vjax.pin_patch_speed(rpm * (2 * jnp.pi / 60.0), R, R_pin)
-        r = vjax.pin_in_hole(m, R, R_pin, load, omega=w, n=n, memory=memory, throw=False)
+        r = vjax.pin_in_hole(material, R, radial_clearance, load, omega_shaft=rpm * (2 * jnp.pi / 60.0),
+                             memory=memory, temperature=T, shift=shift, options=options, throw=False)
         return r.torque, r.converged
-    model.scene = f"pin_in_hole(R={R}, R_pin={R_pin}, n={n}, memory={memory!r})"
+    model.scene = f"pin_in_hole(R={R}, radial_clearance={radial_clearance}, n={n}, memory={memory!r})"
     return model
 
 

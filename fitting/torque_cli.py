@@ -39,10 +39,12 @@ def _parser():
     g.add_argument("--R-inner", type=float, default=4e-3, help="inner raceway radius (default 4e-3)")
     g.add_argument("--roller-diameter", type=float, default=2e-3, help="roller diameter (default 2e-3)")
     g.add_argument("--rollers", type=int, default=9, help="number of rollers (default 9)")
-    g.add_argument("--clearance", type=float, default=None, help="diametral clearance (default from the radii); a preload is negative: --clearance=-5e-6")
+    g.add_argument("--diametral-clearance", type=float, default=None,
+                   help="diametral clearance (default from the radii); a preload is negative: --diametral-clearance=-5e-6")
     g = p.add_argument_group("pin joint geometry (m)")
     g.add_argument("--R", type=float, default=0.01, help="hole radius (default 0.01)")
-    g.add_argument("--R-pin", type=float, default=0.0099, help="pin radius (default 0.0099)")
+    g.add_argument("--radial-clearance", type=float, default=1e-4,
+                   help="radial clearance hole radius - pin radius (default 1e-4)")
     p.add_argument("--n", type=int, default=None, help="elements per ring (default 256 roller, 128 pin)")
     p.add_argument("--dma", nargs="+", default=None, metavar="FILE", help="DMA files for the consistency term")
     p.add_argument("--w-dma", type=float, default=0.1, help="weight of the DMA term with --dma (default 0.1)")
@@ -60,8 +62,8 @@ def _model(args):
     from . import torque as ft
     if args.scene == "roller":
         return ft.roller_model(args.R_outer, args.R_inner, args.roller_diameter, args.rollers,
-                               n=args.n or 256, clearance=args.clearance)
-    return ft.pin_model(args.R, args.R_pin, n=args.n or 128)
+                               n=args.n or 256, diametral_clearance=args.diametral_clearance)
+    return ft.pin_model(args.R, args.radial_clearance, n=args.n or 128)
 
 
 def _check_args(args):
@@ -69,7 +71,7 @@ def _check_args(args):
     for name in ("steps", "polish"):
         if getattr(args, name) < 0:
             return f"--{name} must be >= 0, got {getattr(args, name)}"
-    for name in ("lr", "rel_scatter", "R_outer", "R_inner", "roller_diameter", "R", "R_pin"):
+    for name in ("lr", "rel_scatter", "R_outer", "R_inner", "roller_diameter", "R", "radial_clearance"):
         v = getattr(args, name)
         if not (v > 0 and v < float("inf")):
             return f"--{name.replace('_', '-')} must be a finite number > 0, got {v}"

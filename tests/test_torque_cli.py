@@ -12,12 +12,12 @@ from vjax import Arrhenius, Material, WLF
 
 TRUE = Material.prony(1e6, [3e6, 4e6, 2e6], [1e-4, 1e-3, 1e-2], 0.5)
 SHIFT = WLF(8.0, 100.0, 25.0)
-GEOMETRY = ["--scene", "pin", "--R", "0.01", "--R-pin", "0.0099", "--n", "32"]
+GEOMETRY = ["--scene", "pin", "--R", "0.01", "--radial-clearance", "1e-4", "--n", "32"]
 
 
 @pytest.fixture
 def files(tmp_path):
-    model = ft.pin_model(R=0.01, R_pin=0.0099, n=32)
+    model = ft.pin_model(R=0.01, radial_clearance=1e-4, n=32)
     rpm = np.tile([30.0, 100.0, 300.0], 2)
     T = np.repeat([30.0, 50.0], 3)
     load = np.full(6, 1e3)
@@ -62,7 +62,7 @@ def test_bad_inputs_fail_cleanly(files, tmp_path, capsys):
     assert main([str(data), "--material", str(arr), "--out", str(out), *GEOMETRY]) == 1
     assert "WLF" in capsys.readouterr().err
     for bad in (["--steps", "-1"], ["--lr", "0"], ["--rel-scatter", "0"], ["--n", "8"], ["--w-dma", "-1"],
-                ["--R-pin=-0.01"]):
+                ["--radial-clearance=-0.01"]):
         assert main([str(data), "--material", str(start), "--out", str(out), *GEOMETRY, *bad]) == 2, bad
         assert bad[0].split("=")[0] in capsys.readouterr().err
     assert not out.exists()

@@ -71,7 +71,7 @@ def test_params_roundtrip_and_wlf_only():
 # a small pin-joint problem shared by the next two tests (compiled once per residual function)
 TRUE = Material.prony(1e6, [3e6, 4e6, 2e6], [1e-4, 1e-3, 1e-2], 0.5)
 SHIFT = WLF(8.0, 100.0, 25.0)
-MODEL = ft.pin_model(R=0.01, R_pin=0.0099, n=32)
+MODEL = ft.pin_model(R=0.01, radial_clearance=1e-4, n=32)
 
 
 def _data():
