@@ -46,8 +46,9 @@ LOAD = 2.2e-3 * 1e6 * RB
 WB, WJ = 0.2, -0.4
 
 
-def _point(n, omega_j=WJ, initial=None):
-    return vjax.journal_bearing(RB, C, ETA, omega_j, WB, load=LOAD, n=n, bearing=SLS, initial=initial)
+def _point(n, omega_j=WJ, initial=None, tol=None, throw=True):
+    return vjax.journal_bearing(RB, C, ETA, LOAD, housing=SLS, omega_shaft=omega_j, omega_housing=WB, initial=initial,
+                                options=vjax.JournalOptions(n=n, tol=tol), throw=throw)
 
 
 def _sweep(n, speeds):
@@ -86,7 +87,7 @@ def main(out_dir="experiments/out", quick=False):
         errs = dict(
             eps=abs(float(sol.eccentricity - ref.eccentricity)),
             attitude=abs(float(sol.attitude_angle - ref.attitude_angle)),
-            torque_rel=abs(float(sol.torque_bearing / ref.torque_bearing - 1)),
+            torque_rel=abs(float(sol.torque / ref.torque - 1)),
             hmin_rel=abs(float(sol.min_film / ref.min_film - 1)))
         rows.append([n, first, point, sweep_s, sweep_s / len(speeds), int(sol.iterations),
                      sum(int(s.iterations) for s in sweep), errs["eps"], errs["attitude"],

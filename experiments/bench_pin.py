@@ -6,7 +6,7 @@ Run::
 
 **Pin in a hole**, the thesis's viscoelastic case (R = 0.08 m, R' = 0.075 m, SLS E0 = 1 MPa,
 Einf = 10 MPa, tau = 0.01 s, nu = 0.5, F~ = 3.5e-2, omega~ = omega tau = 1, periodic
-memory, float64, default :class:`vjax.SolverOptions`). For N = 2^8 ... 2^16:
+memory, float64, default :class:`vjax.PinOptions`). For N = 2^8 ... 2^16:
 
 - ``fwd``: ``pin_in_hole`` jitted with the material and omega as traced arguments. We
   report the first call (trace + compile + run), the median warm solve time, the
@@ -85,16 +85,23 @@ def material():
     return vjax.Material.sls(E0, EINF, TAU, NU)
 
 
+def pin(m, omega, n, **options):
+    """The benchmark pin at patch speed ``omega`` (rad/s relative to the plane), not raising."""
+    c = R - R_PIN
+    return vjax.pin_in_hole(m, R, c, LOAD, omega_shaft=vjax.pin_shaft_speed(omega, R, c),
+                            options=vjax.PinOptions(n=n, **options), throw=False)
+
+
 def _pin_fn(n):
     @jax.jit
     def fwd(m, omega):
-        r = vjax.pin_in_hole(m, R, R_PIN, LOAD, omega, n=n, throw=False)
+        r = pin(m, omega, n)
         return r.torque, r.pin_offset, r.iterations, r.converged, r.pressure
     return fwd
 
 
 def _grad_fn(n):
-    return jax.jit(jax.grad(lambda m, omega: vjax.pin_in_hole(m, R, R_PIN, LOAD, omega, n=n, throw=False).torque))
+    return jax.jit(jax.grad(lambda m, omega: pin(m, omega, n).torque))
 
 
 def _op_time(n, repeats):

@@ -50,13 +50,13 @@ def shaft(w_tilde):
     return w_tilde / TAU * (RI + RO) / RI
 
 
-def _solve(n, w, initial=None):
-    return vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, omega_inner=w, n=n, throw=False, initial=initial,
-                               max_iter=15)
+def _solve(n, w, initial=None, tol=1e-10):
+    return vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, omega_shaft=w, initial=initial,
+                               options=vjax.RollerOptions(n=n, tol=tol, max_iter=15), throw=False)
 
 
 def _summary(r):
-    return dict(loads=r.roller_loads[0], torque=r.torque[0], shift=r.ring_shift, converged=r.converged,
+    return dict(loads=r.roller_loads[0], torque=r.torque, shift=r.ring_shift, converged=r.converged,
                 iterations=r.iterations)
 
 

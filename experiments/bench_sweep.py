@@ -56,7 +56,9 @@ def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_ma
     params = {"omega": W.ravel(), "load": L.ravel(), "clearance": C.ravel()}
 
     def point(p):
-        r = vjax.pin_in_hole(m, R, R - p["clearance"], p["load"], omega=p["omega"], n=n, throw=False)
+        c = p["clearance"]
+        r = vjax.pin_in_hole(m, R, c, p["load"], omega_shaft=vjax.pin_shaft_speed(p["omega"], R, c),
+                             options=vjax.PinOptions(n=n), throw=False)
         return {"torque": r.torque, "offset": r.pin_offset, "angle": r.contact_angle,
                 "converged": r.converged, "iterations": r.iterations}
 

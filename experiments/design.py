@@ -56,8 +56,8 @@ def journal_design(out, quick=False):
     h_lim = 4.5e-6
     lo = np.log([2e-4, 5e-4])
     hi = np.log([1e-3, 5e-3])
-    ref = vjax.journal_bearing(R_B, 5e-4, 1e-3, omega_journal=-0.4, omega_bearing=0.2, load=load,
-                               bearing=bearing, n=n)
+    speeds = dict(omega_shaft=-0.4, omega_housing=0.2)
+    ref = vjax.journal_bearing(R_B, 5e-4, 1e-3, load, housing=bearing, **speeds, options=vjax.JournalOptions(n=n))
     cache = []            # (x, solution) of converged solves, for warm starts
     calls = {"n": 0}
 
@@ -68,9 +68,9 @@ def journal_design(out, quick=False):
         return cache[int(np.argmin(d))][1]
 
     def f(y, init):
-        s = vjax.journal_bearing(R_B, jnp.exp(y[0]), jnp.exp(y[1]), omega_journal=-0.4, omega_bearing=0.2,
-                                 load=load, bearing=bearing, n=n, throw=False, initial=init, solver="newton")
-        return jnp.stack([s.dissipation_fluid + s.dissipation_bearing, s.min_film]), s
+        s = vjax.journal_bearing(R_B, jnp.exp(y[0]), jnp.exp(y[1]), load, housing=bearing, **speeds, initial=init,
+                                 options=vjax.JournalOptions(n=n, strategy="newton"), throw=False)
+        return jnp.stack([s.dissipation_fluid + s.dissipation_housing, s.min_film]), s
 
     # compiled once: value and 2-column Jacobian (forward mode through the implicit derivatives)
     val_jac = jax.jit(lambda y, init: (f(y, init)[0], jax.jacfwd(lambda z: f(z, init), has_aux=True)(y)))
@@ -99,7 +99,7 @@ def journal_design(out, quick=False):
             memo[key] = solve(x)
         return memo[key]
 
-    scale_P = float(ref.dissipation_fluid + ref.dissipation_bearing)
+    scale_P = float(ref.dissipation_fluid + ref.dissipation_housing)
     obj = lambda x: ev(x)[0][0] / scale_P if ev(x)[2] else 1e3
     obj_j = lambda x: ev(x)[1][0] / scale_P if ev(x)[2] else np.zeros(2)
     con = lambda x: (ev(x)[0][1] - h_lim) / h_lim if ev(x)[2] else -1.0
@@ -199,10 +199,11 @@ def roller_design(out, quick=False):
         """(mean torque N m/m, peak pressure Pa, max roller load N/m) at y = (P_d um, R_I mm)."""
         def one(w, t):
             Pd, RI = y[0] * 1e-6, y[1] * 1e-3
-            r = vjax.roller_bearing(mat, mat, RI + c["D"] + Pd / 2, RI, c["D"], Z, c["load"], clearance=Pd,
-                                    omega_inner=w, n=n, temperature=t, shift=shift, throw=False)
-            peak = jnp.maximum(_peak(r.pressure[0]), _peak(r.pressure[1]))
-            return jnp.stack([r.torque[0], peak, jnp.max(r.roller_loads[0])]), r.converged
+            r = vjax.roller_bearing(mat, mat, RI + c["D"] + Pd / 2, RI, c["D"], Z, c["load"], diametral_clearance=Pd,
+                                    omega_shaft=w, temperature=t, shift=shift, options=vjax.RollerOptions(n=n),
+                                    throw=False)
+            peak = jnp.maximum(_peak(r.pressure), _peak(r.pressure_shaft))
+            return jnp.stack([r.torque, peak, jnp.max(r.roller_loads[0])]), r.converged
         v, ok = jax.vmap(one)(W, T)
         return jnp.stack([jnp.mean(v[:, 0]), jnp.max(v[:, 1]), jnp.max(v[:, 2])]), jnp.all(ok)
 

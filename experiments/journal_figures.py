@@ -60,11 +60,13 @@ ELASTIC = vjax.Material.elastic(E0, NU)
 LOAD = 2.2e-3 * E0 * RB            # N/m
 WB, WJ = 0.2 / TAU, -0.4 / TAU      # rad/s
 MEMORIES = ("periodic", "thesis")
-CONFIGS = {"HS": dict(bearing=SLS), "SH": dict(journal=SLS), "SS": dict(bearing=SLS, journal=SLS)}
+CONFIGS = {"HS": dict(housing=SLS), "SH": dict(shaft=SLS), "SS": dict(housing=SLS, shaft=SLS)}
 
 
 def _solve(n, omega_j=WJ, **kw):
-    return vjax.journal_bearing(RB, C, ETA, omega_j, WB, load=LOAD, n=n, **kw)
+    """The thesis bearing (Fig. 3.5 speeds by default) on an n-element grid."""
+    return vjax.journal_bearing(RB, C, ETA, LOAD, omega_shaft=omega_j, omega_housing=WB,
+                                options=vjax.JournalOptions(n=n), **kw)
 
 
 def _deg(x):
@@ -91,17 +93,17 @@ def _row(s):
     return dict(eps=float(s.eccentricity), eps_eff=float(s.eccentricity_effective),
                 attitude_deg=float(_deg(s.attitude_angle)), hmin_over_c=float(s.min_film) / C,
                 pmax_over_E0=float(np.max(s.pressure)) / E0, rupture_deg=float(_deg(s.rupture_angle)),
-                CB=float(s.torque_bearing) / scale, CJ=float(s.torque_journal) / scale,
-                CJ_O=float(s.torque_journal_about_O) / scale, CvB=float(s.torque_viscoelastic) / scale,
-                CvJ=float(s.torque_viscoelastic_journal) / scale,
-                share_pct=100 * float(s.torque_viscoelastic) / float(s.torque_bearing),
+                CB=float(s.torque) / scale, CJ=float(s.torque_shaft) / scale,
+                CJ_O=float(s.torque_shaft_about_O) / scale, CvB=float(s.torque_viscoelastic) / scale,
+                CvJ=float(s.torque_viscoelastic_shaft) / scale,
+                share_pct=100 * float(s.torque_viscoelastic) / float(s.torque),
                 hersey=float(s.hersey), iterations=int(s.iterations), stages=int(s.stages))
 
 
 def fig_3_4(out, n):
-    cases = {"circular": _solve(n, bearing=ELASTIC),
-             "half-plane (l = 1 m)": _solve(n, bearing=ELASTIC, green="half_plane"),
-             "half-plane (l = R_B)": _solve(n, bearing=ELASTIC, green="half_plane", ref_length=RB)}
+    cases = {"circular": _solve(n, housing=ELASTIC),
+             "half-plane (l = 1 m)": _solve(n, housing=vjax.half_plane(ELASTIC)),
+             "half-plane (l = R_B)": _solve(n, housing=vjax.half_plane(ELASTIC, ref_length=RB))}
     fig, ax = plt.subplots(figsize=(7, 4))
     ax2 = ax.twinx()
     styles = {"circular": "-", "half-plane (l = 1 m)": "--", "half-plane (l = R_B)": ":"}
@@ -153,8 +155,8 @@ def fig_3_5_3_6(out, n):
     for (cfg, mem), s in sols.items():
         for k in range(n):
             rows.append([cfg, mem, float(_deg(s.theta[k])), float(s.film[k]) / C,
-                         float(s.pressure[k]) / E0, float(s.displacement_bearing[k]),
-                         float(s.displacement_journal[k])])
+                         float(s.pressure[k]) / E0, float(s.displacement[k]),
+                         float(s.displacement_shaft[k])])
     _common.write_csv(out / "journal_fig3_5.csv",
                       ["config", "memory", "theta_deg", "h_over_c", "p_over_E0", "u_B_m", "u_J_m"], rows,
                       comments=[f"Fig. 3.5/3.6, n={n}; theta in the line-of-centres frame; "
@@ -177,7 +179,7 @@ def fig_3_5_3_6(out, n):
 
         # without modes 0 and 1 (uniform dilatation, rigid translation: the latter depends on
         # the log reference length), so that the local, magnified deformation is visible
-        uB, uJ = close(_local(s.displacement_bearing)), close(_local(s.displacement_journal))
+        uB, uJ = close(_local(s.displacement)), close(_local(s.displacement_shaft))
         ax.plot(RB * np.cos(thc) / RB, RB * np.sin(thc) / RB, "--", color="teal", lw=0.8)
         ax.plot((RB + K * uB) * np.cos(thc) / RB, (RB + K * uB) * np.sin(thc) / RB, "-", color="teal",
                 label="bearing")
@@ -187,7 +189,7 @@ def fig_3_5_3_6(out, n):
         p = close(np.asarray(s.pressure))
         rp = 1.0 + 0.6 * p / p.max()
         ax.plot(rp * np.cos(thc) * 0.6, rp * np.sin(thc) * 0.6, "r-", lw=0.8, label="pressure (scaled)")
-        F = np.asarray(s.force) / LOAD * 0.5
+        F = -np.asarray(s.force) / LOAD * 0.5     # on the journal: minus the force on the housing
         ax.annotate("", xy=(F[0], F[1]), xytext=(0, 0), arrowprops=dict(color="r", arrowstyle="->"))
         ax.set_aspect("equal")
         ax.set_title(f"SS, memory={mem}, K={K:g}", fontsize=9)
@@ -206,9 +208,9 @@ def fig_3_7_3_8(out, n, speeds):
     for mem in MEMORIES:
         prev = None
         for wj in speeds:
-            s = _solve(n, omega_j=wj / TAU, bearing=SLS, memory=mem, initial=prev, throw=False)
+            s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem, initial=prev, throw=False)
             if not bool(s.converged):  # a cold start (auto falls back to continuation)
-                s = _solve(n, omega_j=wj / TAU, bearing=SLS, memory=mem)
+                s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem)
             prev = s
             table[(mem, wj)] = _row(s)
             profiles[(mem, wj)] = s
@@ -280,7 +282,7 @@ def ref_length_sensitivity(out, n):
     rows = []
     for mem in MEMORIES:
         for l in (RB, 1.0, 10.0):
-            s = _solve(n, bearing=SLS, memory=mem, ref_length=l)
+            s = _solve(n, housing=vjax.hole(SLS, ref_length=l), memory=mem)
             S = vjax.ring_operator("hole", SLS, RB, n, omega=-WB, memory=mem, ref_length=l).symbol
             P = np.fft.rfft(np.asarray(s.pressure))
             k = np.arange(n // 2 + 1)
@@ -289,7 +291,7 @@ def ref_length_sensitivity(out, n):
             r = _row(s)
             rows.append([mem, l, r["eps"], r["eps_eff"], r["hmin_over_c"], r["share_pct"],
                          100 * Dk[1] / Dk.sum(), 100 * float(s.torque_viscoelastic) /
-                         (float(s.torque_bearing) - float(s.torque_viscoelastic))])
+                         (float(s.torque) - float(s.torque_viscoelastic))])
     header = ["memory", "ref_length_m", "eps", "eps_eff", "hmin_over_c", "share_pct",
               "mode1_pct_of_D_B", "CvB_over_shear_pct"]
     _common.write_csv(out / "journal_ref_length.csv", header, rows,

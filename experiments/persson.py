@@ -265,8 +265,8 @@ def small_displacement_pin(material, R, dR, load, n, iterations=6, **kw):
         # indefinite and a Krylov solve can break down (NaN) at isolated reference
         # lengths; e is continuous in ref_length, so nudge it and retry.
         for k in range(5):
-            r = vjax.pin_in_hole(material, R, R - dR, load, 0.0, n=n,
-                                 ref_length=R * np.exp(log_ref + 1e-6 * k), throw=False, **kw)
+            housing = vjax.hole(material, ref_length=R * np.exp(log_ref + 1e-6 * k))
+            r = vjax.pin_in_hole(housing, R, dR, load, options=vjax.PinOptions(n=n, **kw), throw=False)
             if np.isfinite(float(r.pin_offset)):
                 break
         return float(r.pin_offset) - dR, r

@@ -64,10 +64,11 @@ def material():
 
 
 def sweep(memory, speeds, n):
-    """pin_in_hole at omega = speeds / tau, one vmap over speeds (memory and n static)."""
-    m, load = material(), F_TILDE * E0 * R
-    fn = jax.jit(jax.vmap(lambda w: vjax.pin_in_hole(m, R, R_PIN, load, w / TAU, memory=memory, n=n,
-                                                     throw=False)))
+    """pin_in_hole at patch speeds omega~ / tau, one vmap over speeds (memory and n static)."""
+    m, load, c = material(), F_TILDE * E0 * R, R - R_PIN
+    fn = jax.jit(jax.vmap(lambda w: vjax.pin_in_hole(
+        m, R, c, load, omega_shaft=vjax.pin_shaft_speed(w / TAU, R, c), memory=memory,
+        options=vjax.PinOptions(n=n), throw=False)))
     res = jax.block_until_ready(fn(jnp.asarray(speeds)))
     if not bool(np.all(np.asarray(res.converged))):
         bad = np.asarray(speeds)[~np.asarray(res.converged)]
@@ -92,7 +93,7 @@ def persson_validation(out, quick):
         alpha_num = persson.edge_angle(th, p_num)
         err = np.abs(p_num - p_an) / p_an.max()
         interior = np.abs(np.angle(np.exp(1j * th))) < alpha - 4 * np.pi / n
-        r1 = vjax.pin_in_hole(m, R_EL, R_EL - DR_EL, load, 0.0, n=n, throw=False)
+        r1 = vjax.pin_in_hole(m, R_EL, DR_EL, load, options=vjax.PinOptions(n=n), throw=False)
         lp = E_EL / (1 - NU**2) * DR_EL / load
         lp_rows.append([Ft, lp, b, np.tan(alpha_num / 2), alpha, alpha_num, err[interior].max(), err.max(),
                         float(r1.pressure.max()) / p_an.max() - 1, persson.edge_angle(th, np.asarray(r1.pressure)),
@@ -165,7 +166,7 @@ def viscoelastic(out, quick):
         for mem in MEMORIES:
             r = res[mem]
             Fx, Fy = r.force[i]
-            row += [abs(r.torque[i]) / (load * R), np.tan(r.attitude_angle[i]), r.friction_radius[i] / R,
+            row += [abs(r.torque[i]) / (load * R), np.tan(r.force_angle[i]), r.friction_radius[i] / R,
                     Fx, Fy, r.pin_offset[i], r.contact_angle[i], r.pressure[i].max() / E0, int(r.iterations[i])]
         rows.append(row)
     cols = ["C_tilde", "tan_attitude", "Rstar_over_R", "Fx_N_per_m", "Fy_N_per_m", "pin_offset_m",
@@ -261,7 +262,7 @@ def viscoelastic(out, quick):
         r, ls = res[mem], "-" if mem == "periodic" else "--"
         C = np.abs(r.torque) / (load * R)
         axes[0].plot(speeds, C, color=COLORS[mem], ls=ls, marker=".", label=mem)
-        axes[1].plot(speeds, np.tan(r.attitude_angle), color=COLORS[mem], ls=ls, marker=".", label=mem)
+        axes[1].plot(speeds, np.tan(r.force_angle), color=COLORS[mem], ls=ls, marker=".", label=mem)
         axes[2].plot(speeds, r.friction_radius / R, color=COLORS[mem], ls=ls, marker=".", label=mem)
     for ax, lab in zip(axes, ("C~ = |C_t| / (F R)", "tan(theta*)", "R* / R")):
         ax.set(xscale="log", xlabel="omega~ = omega tau", ylabel=lab)
@@ -289,7 +290,7 @@ def main(out_dir="experiments/out", quick=False):
         C = np.abs(res[mem].torque) / (load * R)
         k = int(np.argmax(C))
         lines.append(f"{mem:>8}: peak C~ = {C[k]:.4g} at omega~ = {speeds[k]:.3g}; peak tan(theta*) = "
-                     f"{np.max(np.tan(res[mem].attitude_angle)):.4g}; peak R*/R = "
+                     f"{np.max(np.tan(res[mem].force_angle)):.4g}; peak R*/R = "
                      f"{np.max(res[mem].friction_radius) / R:.4g}; C~ at omega~ = 1e-4, 1e3: "
                      f"{C[0]:.2e}, {C[-1]:.2e}")
     ratio_rows = []

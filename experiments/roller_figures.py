@@ -74,10 +74,11 @@ def shaft_speed(w_tilde, tau=TAU):
 
 def _record(r, load):
     theta, alpha = grid(r.pressure.shape[-1])
-    Fx = RI * 2 * alpha * jnp.sum(r.pressure[1] * jnp.cos(theta))
+    Fx = RI * 2 * alpha * jnp.sum(r.pressure_shaft * jnp.cos(theta))
     return dict(loads=r.roller_loads[0], loads_inner=r.roller_loads[1], deflection=r.deflection,
                 u_outer=r.u_at_rollers[0], u_inner=r.u_at_rollers[1], gaps=r.gaps,
-                force_angle=r.force_angle, friction_angle=r.friction_angle, torque=r.torque,
+                force_angle=r.force_angle, friction_angle=r.friction_angle,
+                torque=jnp.stack([r.torque, r.torque_shaft]),       # (housing, shaft)
                 friction_radius=r.friction_radius, force=r.force, ring_shift=r.ring_shift,
                 load_error=jnp.abs(Fx - load) / load,
                 roller_error=jnp.max(jnp.abs(r.roller_loads[0] - r.roller_loads[1])) / load,
@@ -85,11 +86,11 @@ def _record(r, load):
 
 
 def make_sweep(n, memory, outer_only=False):
-    """Jitted continuation sweep ``f(material, load, omega_inner_array) -> dict of arrays``."""
-    def solve(mat, load, w, initial=None, shift=None, T=None):
-        inner = None if outer_only else mat
-        return vjax.roller_bearing(mat, inner, RO, RI, D, Z, load, omega_inner=w, memory=memory, n=n,
-                                   throw=False, initial=initial, shift=shift, temperature=T)
+    """Jitted continuation sweep ``f(material, load, shaft_speeds) -> dict of arrays``."""
+    def solve(mat, load, w, initial=None):
+        shaft = None if outer_only else mat
+        return vjax.roller_bearing(mat, shaft, RO, RI, D, Z, load, omega_shaft=w, memory=memory,
+                                   options=vjax.RollerOptions(n=n), initial=initial, throw=False)
 
     @jax.jit
     def sweep(mat, load, ws):
@@ -143,7 +144,7 @@ def fig_2_14(w, res, out):
 def fig_2_15(w, res, out):
     fig, ax = plt.subplots(figsize=(6, 3.5), constrained_layout=True)
     for mem in MEMORIES:
-        ax.semilogx(w, np.degrees(res[mem]["force_angle"][:, 0]), "k" + STYLE[mem], label=mem)
+        ax.semilogx(w, np.degrees(res[mem]["force_angle"]), "k" + STYLE[mem], label=mem)
     ax.set_xlabel(r"$\tilde\omega$")
     ax.set_ylabel(r"$\theta_F$ of $F^O_{tot}$ (deg)")
     ax.legend()
@@ -157,10 +158,10 @@ def fig_2_16_20(snaps, out):
     for row, wt in enumerate(SNAPS):
         ax = axes[row, 0]
         r = snaps[("periodic", wt)]
-        th = np.asarray(r.theta[0])
+        th = np.asarray(r.theta)
         C = np.array([float(r.ring_shift), 0.0])
-        for k, (R, sgn, c) in enumerate(((RO, 1, (0, 0)), (RI, -1, C))):
-            u = np.asarray(r.displacement[k])
+        for u, R, sgn, c in ((r.displacement, RO, 1, (0, 0)), (r.displacement_shaft, RI, -1, C)):
+            u = np.asarray(u)
             rr = R + sgn * K * u
             ax.plot(c[0] / RO + R / RO * np.cos(th), c[1] / RO + R / RO * np.sin(th), "k:", lw=0.6)
             ax.plot(c[0] / RO + rr / RO * np.cos(th), c[1] / RO + rr / RO * np.sin(th), "k-", lw=1)
@@ -170,7 +171,7 @@ def fig_2_16_20(snaps, out):
             circ = plt.Circle((rho[j] * np.cos(psi) / RO, rho[j] * np.sin(psi) / RO), D / 2 / RO, fill=False, color=col)
             ax.add_patch(circ)
             ax.text(0.75 * np.cos(psi), 0.75 * np.sin(psi), str(j + 1), fontsize=7, ha="center", va="center")
-        F = np.asarray(r.force[0]) / float(np.hypot(*r.force[0]))
+        F = np.asarray(r.force) / float(np.hypot(*r.force))
         ax.arrow(0, 0, 0.5 * F[0], 0.5 * F[1], color="r", width=0.01)
         ax.set_aspect("equal")
         ax.set_title(rf"$\tilde\omega$ = {wt:g}: contours x{K:g} (periodic), green = loaded", fontsize=9)
@@ -178,8 +179,8 @@ def fig_2_16_20(snaps, out):
             ax = axes[row, col]
             for mem in MEMORIES:
                 s = snaps[(mem, wt)]
-                th = np.asarray(s.theta[k])
-                p = np.asarray(s.pressure[k]) / E0
+                th = np.asarray(s.theta)
+                p = np.asarray((s.pressure, s.pressure_shaft)[k]) / E0
                 for ci, j in enumerate(ZONE):
                     psi = float(s.roller_angles[j])
                     if k == 1:   # the inner ring's angles are about its own centre
@@ -205,8 +206,8 @@ def fig_2_21(w, torque_res, out):
             load = Ft * E0 * RO
             lab = rf"$\tilde F$={Ft:g}, {mem}"
             axes[0].loglog(w, np.abs(s["torque"][:, 0]) / (load * RO), f"C{li}" + STYLE[mem], label=lab)
-            axes[1].loglog(w, np.tan(s["friction_angle"][:, 0]), f"C{li}" + STYLE[mem], label=lab)
-            axes[2].loglog(w, s["friction_radius"][:, 0] / RO, f"C{li}" + STYLE[mem], label=lab)
+            axes[1].loglog(w, np.tan(s["friction_angle"]), f"C{li}" + STYLE[mem], label=lab)
+            axes[2].loglog(w, s["friction_radius"] / RO, f"C{li}" + STYLE[mem], label=lab)
     for ax, yl in zip(axes, (r"$\tilde C = |C_t|/(F R_O)$", r"$\tan\varphi^*$", r"$R^*/R_O$")):
         ax.set_xlabel(r"$\tilde\omega$")
         ax.set_ylabel(yl)
@@ -254,7 +255,7 @@ def main(out_dir="experiments/out", quick=False):
         i_peak = int(np.argmax(np.abs(res[mem]["torque"][:, 0])))
         lines.append(f"  {mem}: peak C~ = {np.abs(res[mem]['torque'][i_peak, 0]) / (F_TILDE * E0 * RO * RO):.3e} "
                      f"at omega~ = {w[i_peak]:.3g}; max |force angle| = "
-                     f"{np.degrees(np.max(np.abs(res[mem]['force_angle'][:, 0]))):.2f} deg")
+                     f"{np.degrees(np.max(np.abs(res[mem]['force_angle']))):.2f} deg")
     # elastic limits and Stribeck
     for mem in MEMORIES:
         for i in (0, -1):
@@ -264,7 +265,7 @@ def main(out_dir="experiments/out", quick=False):
                          f"{abs(res[mem]['torque'][i, 0]) / (F_TILDE * E0 * RO * RO):.1e}, Q_max Z/F = "
                          f"{L.max() * Z / (F_TILDE * E0 * RO):.4f}")
     el = vjax.Material.elastic(E0, NU)
-    r_el = vjax.roller_bearing(el, el, RO, RI, D, Z, F_TILDE * E0 * RO, n=n)
+    r_el = vjax.roller_bearing(el, el, RO, RI, D, Z, F_TILDE * E0 * RO, options=vjax.RollerOptions(n=n))
     Q = np.asarray(r_el.roller_loads[0])
     c = np.maximum(np.cos(np.asarray(r_el.roller_angles)), 0)
     ratio = Q.max() * Z / (F_TILDE * E0 * RO)
@@ -276,7 +277,8 @@ def main(out_dir="experiments/out", quick=False):
 
     # snapshots for Figs. 2.16-2.20
     snap_fn = {mem: jax.jit(lambda wI, mem=mem: vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, F_TILDE * E0 * RO,
-                                                                     omega_inner=wI, memory=mem, n=n, throw=False))
+                                                                     omega_shaft=wI, memory=mem,
+                                                                     options=vjax.RollerOptions(n=n), throw=False))
                for mem in MEMORIES}
     snaps = {(mem, wt): jax.device_get(snap_fn[mem](shaft_speed(wt))) for mem in MEMORIES for wt in SNAPS}
 
@@ -294,7 +296,7 @@ def main(out_dir="experiments/out", quick=False):
             for j in range(Z):
                 rows.append([mem, float(wt), j + 1, float(s["deflection"][i, j] / RO), float(s["u_outer"][i, j] / RO),
                              float(s["u_inner"][i, j] / RO), float(s["gaps"][i, j] / RO),
-                             float(s["loads"][i, j] / (E0 * RO)), float(np.degrees(s["force_angle"][i, 0]))])
+                             float(s["loads"][i, j] / (E0 * RO)), float(np.degrees(s["force_angle"][i]))])
     _write_csv(out / "roller_sweep.csv", ["memory", "omega_tilde", "roller", "delta_over_RO", "uO_over_RO",
                                           "uI_over_RO", "gap_over_RO", "F_over_E0RO", "force_angle_outer_deg"], rows,
                comments=[f"thesis case, F~ = {F_TILDE}, n = {n}; Figs. 2.14-2.15"])
@@ -303,14 +305,15 @@ def main(out_dir="experiments/out", quick=False):
         load = Ft * E0 * RO
         for i, wt in enumerate(w):
             rows.append([mem, Ft, float(wt), float(s["torque"][i, 0] / (load * RO)), float(s["torque"][i, 1] / (load * RO)),
-                         float(np.tan(s["friction_angle"][i, 0])), float(s["friction_radius"][i, 0] / RO)])
+                         float(np.tan(s["friction_angle"][i])), float(s["friction_radius"][i] / RO)])
     _write_csv(out / "roller_torque.csv", ["memory", "F_tilde", "omega_tilde", "C_outer_over_FRO", "C_inner_over_FRO",
                                            "tan_friction_angle_outer", "friction_radius_over_RO"], rows,
                comments=["Fig. 2.21; torques on each ring about O (Eq. 2.40), signed"])
     rows = []
     for (mem, wt), s in snaps.items():
-        for k, ring in enumerate(("outer", "inner")):
-            for th, p, u in zip(np.asarray(s.theta[k]), np.asarray(s.pressure[k]), np.asarray(s.displacement[k])):
+        for ring, pressure, displacement in (("outer", s.pressure, s.displacement),
+                                             ("inner", s.pressure_shaft, s.displacement_shaft)):
+            for th, p, u in zip(np.asarray(s.theta), np.asarray(pressure), np.asarray(displacement)):
                 rows.append([mem, wt, ring, float(th), float(p / E0), float(u / RO)])
     _write_csv(out / "roller_rings.csv", ["memory", "omega_tilde", "ring", "theta", "p_over_E0", "u_over_RO"], rows,
                comments=["Figs. 2.16-2.20; inner-ring angles about the inner ring's centre"])
@@ -323,17 +326,19 @@ def main(out_dir="experiments/out", quick=False):
     for T in (30.0, 50.0):
         mat = POLY.at_temperature(WLF, T)
         s = jax.device_get(sweep_T(mat, load, jnp.asarray(rpm * 2 * np.pi / 60)))
-        Ct = np.abs(np.asarray(s["torque"][:, 0])) * NEEDLE_LENGTH
-        lines.append(f"  bushing T = {T:g} C: all converged {bool(np.all(s['converged']))}, torque "
-                     f"{Ct.min():.3e}..{Ct.max():.3e} N m over {rpm[0]:g}..{rpm[-1]:g} rpm")
-        plt.loglog(rpm, Ct * 1e3, label=f"T = {T:g} C")
+        Ct = np.abs(np.asarray(s["torque"][:, 0]))          # N m/m
+        lines.append(f"  bushing T = {T:g} C: all converged {bool(np.all(s['converged']))}, torque per unit length "
+                     f"{Ct.min():.3e}..{Ct.max():.3e} N m/m over {rpm[0]:g}..{rpm[-1]:g} rpm (x {NEEDLE_LENGTH} m "
+                     f"needle length: {Ct.min() * NEEDLE_LENGTH:.3e}..{Ct.max() * NEEDLE_LENGTH:.3e} N m)")
+        plt.loglog(rpm, Ct, label=f"T = {T:g} C")
         rows += [[T, float(N), float(c)] for N, c in zip(rpm, Ct)]
     plt.xlabel("shaft speed N (rpm)")
-    plt.ylabel(r"viscoelastic friction torque $C_t$ (N mm)")
-    plt.title("Rigid shaft, Prony bushing, 50 N on a 7.8 mm needle set", fontsize=9)
+    plt.ylabel(r"viscoelastic friction torque $C_t$ (N m/m)")
+    plt.title(f"Rigid shaft, 4-term Prony bushing, {50.0 / NEEDLE_LENGTH:.0f} N/m (50 N on a 7.8 mm needle set), "
+              "$R_O$ = 6 mm, $Z$ = 9", fontsize=8)
     plt.legend()
     _common.save_figure(fig, out / "roller_torque_temperature.png")
-    _write_csv(out / "roller_torque_temperature.csv", ["T_C", "rpm", "torque_Nm"], rows,
+    _write_csv(out / "roller_torque_temperature.csv", ["T_C", "rpm", "torque_Nm_per_m"], rows,
                comments=["4-term Prony bushing (E0 = 0.1 GPa, Einf = 1.5 GPa, tau 1e-3..1 s at 20 C, nu = 0.46), "
                          "WLF C1 = 8.86, C2 = 101.6, T_ref = 20 C; rigid inner ring; Z = 9, R_O = 6 mm, R_I = 4 mm"])
     lines.append(f"  total {time.perf_counter() - t0:.1f} s")

@@ -97,13 +97,20 @@ def _error_row(scene, case, exc, dtype="float64"):
 
 
 # ---------------------------------------------------------------------- pin
+def _pin(m, dR, load, omega, n, memory):
+    """The pin with the patch moving at ``omega`` (rad/s) relative to the plane, not raising."""
+    import vjax
+    return vjax.pin_in_hole(m, R, dR, load, omega_shaft=vjax.pin_shaft_speed(omega, R, dR), memory=memory,
+                            options=vjax.PinOptions(n=n), throw=False)
+
+
 def pin(m, load_t=3.5e-2, w_t=1.0, dR=R - R_PIN, memory="periodic", n=512, grad=True):
     """Pin case at F~ = load_t, omega~ = w_t (tau of the SLS), clearance dR."""
     import jax
     import vjax
     load = load_t * 1e6 * R
     omega = w_t / TAU
-    res, t = _timed(lambda: vjax.pin_in_hole(m, R, R - dR, load, omega, n=n, memory=memory, throw=False))
+    res, t = _timed(lambda: _pin(m, dR, load, omega, n, memory))
     g = _pin_grad(n, memory, float(dR))(m, load, omega) if grad else None
     note = (f"contact angle {float(res.contact_angle):.4g} rad, offset/dR {float(res.pin_offset) / dR:.4g}, "
             f"torque {float(res.torque):.4g} N m/m")
@@ -116,25 +123,31 @@ def _pin_grad(n, memory, dR):
     import vjax
 
     def scalar(m, load, omega):
-        r = vjax.pin_in_hole(m, R, R - dR, load, omega, n=n, memory=memory, throw=False)
+        r = _pin(m, dR, load, omega, n, memory)
         return r.torque / (load * R) + r.pin_offset / R + r.contact_angle
     return jax.jit(jax.grad(scalar, argnums=(0, 1, 2)))
 
 
 # ---------------------------------------------------------------------- roller
+def _roller(m, geometry, Zr, load, clearance, w_i, n, memory):
+    import vjax
+    ro, ri, d = geometry
+    return vjax.roller_bearing(m, m, ro, ri, d, Zr, load, diametral_clearance=clearance, omega_shaft=w_i,
+                               memory=memory, options=vjax.RollerOptions(n=n), throw=False)
+
+
 def roller(m, load_t=6.5e-3, w_t=1.0, clearance=None, Zr=Z, geometry=(RO, RI, D), memory="periodic", n=128,
            grad=True):
     import vjax
     ro, ri, d = geometry
     load = load_t * 1e6 * ro
     w_i = w_t / TAU * (ri + ro) / ri          # omega~ = omega_c tau with the outer ring fixed
-    res, t = _timed(lambda: vjax.roller_bearing(m, m, ro, ri, d, Zr, load, clearance=clearance, omega_inner=w_i,
-                                                memory=memory, n=n, throw=False))
+    res, t = _timed(lambda: _roller(m, geometry, Zr, load, clearance, w_i, n, memory))
     g = _roller_grad(n, memory, Zr, geometry, clearance)(m, load, w_i) if grad else None
     import numpy as np
     loads = np.asarray(res.roller_loads[0])
     note = (f"{int(np.sum(loads > 1e-9 * load))} of {Zr} rollers loaded, max roller load / (F/Z) "
-            f"{loads.max() / (load / Zr):.3g}, outer torque {float(res.torque[0]):.3g} N m/m")
+            f"{loads.max() / (load / Zr):.3g}, outer torque {float(res.torque):.3g} N m/m")
     return res, t, g, note
 
 
@@ -145,23 +158,27 @@ def _roller_grad(n, memory, Zr, geometry, clearance):
     ro, ri, d = geometry
 
     def scalar(m, load, w_i):
-        r = vjax.roller_bearing(m, m, ro, ri, d, Zr, load, clearance=clearance, omega_inner=w_i, memory=memory, n=n,
-                                throw=False)
-        return r.roller_loads[0, 0] / load + r.torque[0] / (load * ro) + r.ring_shift / d
+        r = _roller(m, geometry, Zr, load, clearance, w_i, n, memory)
+        return r.roller_loads[0, 0] / load + r.torque / (load * ro) + r.ring_shift / d
     return jax.jit(jax.grad(scalar, argnums=(0, 1, 2)))
 
 
 # ---------------------------------------------------------------------- journal
+def _journal(housing, shaft, load, eta, wB, wJ, n, memory):
+    import vjax
+    return vjax.journal_bearing(RB, C, eta, load, housing=housing, shaft=shaft, omega_shaft=wJ, omega_housing=wB,
+                                memory=memory, options=vjax.JournalOptions(n=n), throw=False)
+
+
 def journal(bearing, journal_mat=None, load_t=2.2e-3, wB=0.2, wJ=-0.4, E_ref=1e6, memory="periodic", n=128,
             eta=ETA, grad=True):
     import numpy as np
     import vjax
     load = load_t * E_ref * RB
-    res, t = _timed(lambda: vjax.journal_bearing(RB, C, eta, wJ, wB, load=load, bearing=bearing, journal=journal_mat,
-                                                 memory=memory, n=n, throw=False))
+    res, t = _timed(lambda: _journal(bearing, journal_mat, load, eta, wB, wJ, n, memory))
     g = _journal_grad(n, memory, wB, wJ)(bearing, journal_mat, load, eta) if grad else None
-    u = max(float(np.max(np.abs(np.asarray(res.displacement_bearing)))),
-            float(np.max(np.abs(np.asarray(res.displacement_journal)))))
+    u = max(float(np.max(np.abs(np.asarray(res.displacement)))),
+            float(np.max(np.abs(np.asarray(res.displacement_shaft)))))
     note = (f"eps {float(res.eccentricity):.4g} (eff. {float(res.eccentricity_effective):.4g}), "
             f"h_min {float(res.min_film):.3g} m" + (f", h_min/max|u| {float(res.min_film) / u:.2g}" if u > 0 else "")
             + f", Hersey {float(res.hersey):.2g}, stages {int(res.stages)}")
@@ -174,9 +191,8 @@ def _journal_grad(n, memory, wB, wJ):
     import vjax
 
     def scalar(bearing, journal_mat, load, eta):
-        r = vjax.journal_bearing(RB, C, eta, wJ, wB, load=load, bearing=bearing, journal=journal_mat, memory=memory,
-                                 n=n, throw=False)
-        return r.eccentricity + r.torque_bearing / (load * RB) + r.min_film / C
+        r = _journal(bearing, journal_mat, load, eta, wB, wJ, n, memory)
+        return r.eccentricity + r.torque / (load * RB) + r.min_film / C
     return jax.jit(jax.grad(scalar, argnums=(2, 3)))
 
 

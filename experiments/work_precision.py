@@ -17,7 +17,7 @@ tracing + compilation + one run, is reported separately as ``compile_s``):
   problem linearized (interference e cos(theta) - dR) through ``solve_contact`` with the
   same operator isolates the discretization error; (b) the thesis's viscoelastic case (SLS, omega~ = 1,
   :mod:`experiments.bench_pin`) against the finest grid: relative friction-torque error;
-  (c) solver tolerance ``SolverOptions.tol`` at the default n = 1024.
+  (c) solver tolerance ``options.tol`` at the default n = 1024.
 - **roller** the thesis bearing (:mod:`experiments.bench_roller`, Z = 9, F~ = 6.5e-3) at
   omega~ = 1.4 against the finest grid: max roller-load error / max load, torque error;
   Newton tolerance ladder at the default n = 1024.
@@ -118,7 +118,8 @@ def pin_rows(quick):
     reps = 2 if quick else 7
     for n in ns:
         _, ref_len = persson.small_displacement_pin(m, R, DR, load, n)
-        fn = lambda: vjax.pin_in_hole(m, R, R - DR, load, 0.0, n=n, ref_length=ref_len, throw=False)
+        fn = lambda: vjax.pin_in_hole(vjax.hole(m, ref_length=ref_len), R, DR, load, options=vjax.PinOptions(n=n),
+                                      throw=False)
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         th = np.asarray(r.theta)
@@ -163,9 +164,7 @@ def pin_rows(quick):
     n = DEFAULT["pin"]
     tq_n = math.nan if quick else float(bench_pin._pin_fn(n)(mv, omega)[0])
     for tol in (() if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12)):
-        opts = vjax.SolverOptions(tol=tol)
-        fn = jax.jit(lambda mm, w, o=opts: vjax.pin_in_hole(mm, bench_pin.R, bench_pin.R_PIN, bench_pin.LOAD, w, n=n,
-                                                            options=o, throw=False))
+        fn = jax.jit(lambda mm, w, tol=tol: bench_pin.pin(mm, w, n, tol=tol))
         first, warm = _common.time_fn(fn, mv, omega, repeats=reps)
         r = fn(mv, omega)
         rows.append(_row("pin", f"tolerance at n={n}", n, tol, _rel(r.torque, tq_n),
@@ -185,13 +184,13 @@ def roller_rows(quick):
     n_ref = 32 if quick else 4096
     reps = 2 if quick else 5
     ref = bench_roller._solve(n_ref, w)
-    loads_ref, tq_ref = np.asarray(ref.roller_loads[0]), float(ref.torque[0])
+    loads_ref, tq_ref = np.asarray(ref.roller_loads[0]), float(ref.torque)
     for n in ns:
         fn = lambda n=n: bench_roller._solve(n, w)
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         err = float(np.max(np.abs(np.asarray(r.roller_loads[0]) - loads_ref)) / loads_ref.max())
-        rows.append(_row("roller", "thesis bearing vs finest", n, 1e-10, err, _rel(r.torque[0], tq_ref),
+        rows.append(_row("roller", "thesis bearing vs finest", n, 1e-10, err, _rel(r.torque, tq_ref),
                          "max|roller load error|/max load; error_2 = |torque/torque_ref - 1|", f"n = {n_ref}",
                          first, warm, r.iterations, r.converged))
         print(f"roller n={n}: err {err:.3g}, warm {warm:.3g} s", flush=True)
@@ -199,13 +198,10 @@ def roller_rows(quick):
     if quick:   # no tolerance ladder in quick mode (each tolerance is one compilation)
         return rows
     import vjax
-    base = vjax.roller_bearing(bench_roller.SLS, bench_roller.SLS, bench_roller.RO, bench_roller.RI, bench_roller.D,
-                               bench_roller.Z, bench_roller.LOAD, omega_inner=w, n=n, tol=1e-12, throw=False)
+    base = bench_roller._solve(n, w, tol=1e-12)
     lb = np.asarray(base.roller_loads[0])
     for tol in (() if quick else (1e-3, 1e-6, 1e-9)):   # tol is static: one compile each
-        fn = lambda tol=tol: vjax.roller_bearing(bench_roller.SLS, bench_roller.SLS, bench_roller.RO, bench_roller.RI,
-                                                 bench_roller.D, bench_roller.Z, bench_roller.LOAD, omega_inner=w,
-                                                 n=n, tol=tol, throw=False)
+        fn = lambda tol=tol: bench_roller._solve(n, w, tol=tol)
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         err = float(np.max(np.abs(np.asarray(r.roller_loads[0]) - lb)) / lb.max())
@@ -229,7 +225,8 @@ def journal_rows(quick):
     W = 12 * np.pi * ETAj * U * Rj**2 * eps / (Cj**2 * (2 + eps**2) * np.sqrt(1 - eps**2))
     reps = 2 if quick else 5
     for n in ((32, 64) if quick else (32, 64, 128, 256, 512, 1024)):
-        fn = lambda n=n: vjax.journal_bearing(Rj, Cj, ETAj, WJ, load=W, n=n, cavitation="sommerfeld", throw=False)
+        fn = lambda n=n: vjax.journal_bearing(Rj, Cj, ETAj, W, omega_shaft=WJ, cavitation="sommerfeld",
+                                              options=vjax.JournalOptions(n=n), throw=False)
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         rows.append(_row("journal", "rigid full-Sommerfeld vs closed form", n, 1e-10, abs(float(r.eccentricity) - eps),
@@ -246,20 +243,16 @@ def journal_rows(quick):
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         rows.append(_row("journal", "HS thesis case vs finest", n, 1e-10, abs(float(r.eccentricity - ref.eccentricity)),
-                         _rel(r.torque_bearing, ref.torque_bearing),
+                         _rel(r.torque, ref.torque),
                          "|eps - eps_ref|; error_2 = |torque/torque_ref - 1|", f"n = {n_ref}", first, warm,
                          r.iterations, r.converged))
         print(f"journal HS n={n}: err {rows[-1]['error']:.3g}, warm {warm:.3g} s", flush=True)
     n = DEFAULT["journal"]
     if quick:
         return rows
-    base = vjax.journal_bearing(bench_journal.RB, bench_journal.C, bench_journal.ETA, bench_journal.WJ,
-                                bench_journal.WB, load=bench_journal.LOAD, n=n, bearing=bench_journal.SLS, tol=1e-12,
-                                throw=False)
+    base = bench_journal._point(n, tol=1e-12, throw=False)
     for tol in (() if quick else (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)):
-        fn = lambda tol=tol: vjax.journal_bearing(bench_journal.RB, bench_journal.C, bench_journal.ETA,
-                                                  bench_journal.WJ, bench_journal.WB, load=bench_journal.LOAD, n=n,
-                                                  bearing=bench_journal.SLS, tol=tol, throw=False)
+        fn = lambda tol=tol: bench_journal._point(n, tol=tol, throw=False)
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         rows.append(_row("journal", f"tolerance at n={n}", n, tol, abs(float(r.eccentricity - base.eccentricity)),

@@ -20,7 +20,7 @@ from . import bodies, green
 from .bodies import Body, disc, half_plane, hole
 from ._solve import ConvergenceError
 from .contact import ContactOptions, ContactSolution, solve_contact
-from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed
+from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .journal import JournalOptions, JournalResult, journal_bearing
 from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from .sweep import sweep
@@ -28,7 +28,7 @@ from .sweep import sweep
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole",
            "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
-           "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed",
+           "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
            "JournalOptions", "JournalResult", "journal_bearing",
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "sweep"]
 

@@ -86,6 +86,12 @@ def pin_patch_speed(omega_shaft, omega_housing, R, radial_clearance):
     return -(omega_shaft - omega_housing) * (R - radial_clearance) / radial_clearance
 
 
+def pin_shaft_speed(patch_speed, R, radial_clearance, omega_housing=0.0):
+    """The pin speed (rad/s) that moves the patch at ``patch_speed`` relative to the housing:
+    the inverse of :func:`pin_patch_speed` (the thesis's omega~ = |Omega| tau is a patch speed)."""
+    return omega_housing - patch_speed * radial_clearance / (R - radial_clearance)
+
+
 def _pin_interference(q, args):
     R, R_pin, theta = args
     e = q[0]
