@@ -20,13 +20,13 @@ from __future__ import annotations
 import csv
 import io
 import math
-import os
 import statistics
-import tempfile
 import time
 from pathlib import Path
 
-__all__ = ["enable_x64", "setup", "atomic_write_text", "atomic_write_bytes", "save_figure",
+from fitting import files
+
+__all__ = ["enable_x64", "setup", "atomic_write_text", "save_figure",
            "write_csv", "time_fn", "format_table", "print_table"]
 
 
@@ -46,39 +46,24 @@ def setup(out_dir="experiments/out") -> Path:
     return out
 
 
-def atomic_write_bytes(path, data: bytes) -> Path:
-    """Write ``data`` to ``path`` atomically (temp file in the same directory + os.replace)."""
+def atomic_write_text(path, text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`fitting.files.write_atomic`),
+    creating its folder."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(tmp, 0o644)  # mkstemp makes it 0600; give the usual mode of a new file
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
-
-
-def atomic_write_text(path, text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``path`` atomically."""
-    return atomic_write_bytes(path, text.encode("utf-8"))
+    return files.write_atomic(path, text)
 
 
 def save_figure(fig, path, dpi: int = 150, close: bool = True) -> Path:
     """Save a matplotlib figure atomically (format from the suffix of ``path``); close it."""
     path = Path(path)
-    buf = io.BytesIO()
-    fig.savefig(buf, format=path.suffix.lstrip(".") or "png", dpi=dpi, bbox_inches="tight")
-    if close:
-        import matplotlib.pyplot as plt
-        plt.close(fig)
-    return atomic_write_bytes(path, buf.getvalue())
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        return files.save_figure(fig, path, dpi=dpi, bbox_inches="tight")
+    finally:
+        if close:
+            import matplotlib.pyplot as plt
+            plt.close(fig)
 
 
 def _cell(x):

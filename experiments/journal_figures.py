@@ -47,7 +47,6 @@ from experiments import _common
 
 _common.enable_x64()
 
-import jax  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 

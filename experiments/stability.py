@@ -106,8 +106,6 @@ def _pin(m, dR, load, omega, n, memory):
 
 def pin(m, load_t=3.5e-2, w_t=1.0, dR=R - R_PIN, memory="periodic", n=512, grad=True):
     """Pin case at F~ = load_t, omega~ = w_t (tau of the SLS), clearance dR."""
-    import jax
-    import vjax
     load = load_t * 1e6 * R
     omega = w_t / TAU
     res, t = _timed(lambda: _pin(m, dR, load, omega, n, memory))
@@ -120,7 +118,6 @@ def pin(m, load_t=3.5e-2, w_t=1.0, dR=R - R_PIN, memory="periodic", n=512, grad=
 @lru_cache(maxsize=None)
 def _pin_grad(n, memory, dR):
     import jax
-    import vjax
 
     def scalar(m, load, omega):
         r = _pin(m, dR, load, omega, n, memory)
@@ -138,7 +135,6 @@ def _roller(m, geometry, Zr, load, clearance, w_i, n, memory):
 
 def roller(m, load_t=6.5e-3, w_t=1.0, clearance=None, Zr=Z, geometry=(RO, RI, D), memory="periodic", n=128,
            grad=True):
-    import vjax
     ro, ri, d = geometry
     load = load_t * 1e6 * ro
     w_i = w_t / TAU * (ri + ro) / ri          # omega~ = omega_c tau with the outer ring fixed
@@ -154,7 +150,6 @@ def roller(m, load_t=6.5e-3, w_t=1.0, clearance=None, Zr=Z, geometry=(RO, RI, D)
 @lru_cache(maxsize=None)
 def _roller_grad(n, memory, Zr, geometry, clearance):
     import jax
-    import vjax
     ro, ri, d = geometry
 
     def scalar(m, load, w_i):
@@ -173,7 +168,6 @@ def _journal(housing, shaft, load, eta, wB, wJ, n, memory):
 def journal(bearing, journal_mat=None, load_t=2.2e-3, wB=0.2, wJ=-0.4, E_ref=1e6, memory="periodic", n=128,
             eta=ETA, grad=True):
     import numpy as np
-    import vjax
     load = load_t * E_ref * RB
     res, t = _timed(lambda: _journal(bearing, journal_mat, load, eta, wB, wJ, n, memory))
     g = _journal_grad(n, memory, wB, wJ)(bearing, journal_mat, load, eta) if grad else None
@@ -188,7 +182,6 @@ def journal(bearing, journal_mat=None, load_t=2.2e-3, wB=0.2, wJ=-0.4, E_ref=1e6
 @lru_cache(maxsize=None)
 def _journal_grad(n, memory, wB, wJ):
     import jax
-    import vjax
 
     def scalar(bearing, journal_mat, load, eta):
         r = _journal(bearing, journal_mat, load, eta, wB, wJ, n, memory)

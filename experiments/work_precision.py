@@ -175,7 +175,6 @@ def pin_rows(quick):
 
 # ---------------------------------------------------------------------- roller
 def roller_rows(quick):
-    import jax
     import numpy as np
     from experiments import bench_roller
     rows = []
@@ -197,7 +196,6 @@ def roller_rows(quick):
     n = DEFAULT["roller"]
     if quick:   # no tolerance ladder in quick mode (each tolerance is one compilation)
         return rows
-    import vjax
     base = bench_roller._solve(n, w, tol=1e-12)
     lb = np.asarray(base.roller_loads[0])
     for tol in (() if quick else (1e-3, 1e-6, 1e-9)):   # tol is static: one compile each

@@ -9,10 +9,17 @@ Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF
 :mod:`fitting.prony` (Prony fit and refinement), :mod:`fitting.io` (material JSON),
 :mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``).
 """
-from .calibrate import Report, calibrate
-from .dma import DMAFormatError, DMATable, default_data, read
-from .io import load_material, save_material
-from .master import ShiftTable
+import importlib
 
-__all__ = ["calibrate", "Report", "read", "DMATable", "DMAFormatError", "default_data", "load_material",
-           "save_material", "ShiftTable"]
+# Lazy: ``import fitting`` (or a submodule such as ``fitting.files``, or the command-line
+# tools) must not import vjax and JAX before the caller has chosen float64.
+_EXPORTS = {"calibrate": "calibrate", "Report": "calibrate", "read": "dma", "DMATable": "dma",
+            "DMAFormatError": "dma", "default_data": "dma", "load_material": "io", "save_material": "io",
+            "ShiftTable": "master"}
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
+    raise AttributeError(f"module 'fitting' has no attribute {name!r}")

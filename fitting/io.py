@@ -17,32 +17,15 @@ from __future__ import annotations
 import json
 import math
 import os
-import tempfile
 
 import numpy as np
 
 from vjax.material import Arrhenius, Material, WLF
 
+from .files import write_atomic as atomic_write
 from .master import ShiftTable
 
-__all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict", "atomic_write"]
-
-
-def atomic_write(path, data: bytes | str) -> None:
-    """Write ``data`` to ``path`` via a temporary file + ``os.replace`` (never half-written)."""
-    path = os.fspath(path)
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=d)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data.encode("utf-8") if isinstance(data, str) else data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+__all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict"]
 
 
 def _shift_to_dict(shift) -> dict:

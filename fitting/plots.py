@@ -7,7 +7,6 @@ Each function draws on a new matplotlib figure (Agg backend, no display needed) 
 from __future__ import annotations
 
 import os
-import tempfile
 
 import matplotlib
 
@@ -15,24 +14,19 @@ matplotlib.use("Agg", force=False)
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import files  # noqa: E402
+
 __all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "save_all", "torque_fit", "moduli"]
 
 
 def _save(fig, path):
     if path is None:
         return fig
-    path = os.fspath(path)
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".png", dir=d)
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=110, bbox_inches="tight")
-        os.replace(tmp, path)
+        files.save_figure(fig, path, dpi=110, bbox_inches="tight")
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
         plt.close(fig)
-    return path
+    return os.fspath(path)
 
 
 def _reduced(table, shift):

@@ -97,7 +97,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _scene, _solve, reynolds
-from .bodies import as_body, disc, half_plane, hole
+from .bodies import as_body, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
 HOUSINGS = ("hole", "half_plane")

@@ -1,0 +1,46 @@
+"""The one way files are written (fitting, the CLIs and the experiments): atomically.
+
+A file is written to a temporary file in the target's directory, flushed and fsync'ed,
+given the mode a newly created file gets (0666 less the umask: 0644 under the usual 022),
+then ``os.replace``'d over the target. A reader never sees half a file, and a failed write
+leaves no partial file and an existing target unchanged.
+"""
+from __future__ import annotations
+
+import io
+import os
+import tempfile
+from pathlib import Path
+
+__all__ = ["write_atomic", "save_figure"]
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def write_atomic(path, data: bytes | str) -> Path:
+    """Write ``data`` (bytes, or str as UTF-8) to ``path`` atomically; returns the path."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes it 0600
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return path
+
+
+def save_figure(fig, path, dpi: int = 150, **savefig_kw) -> Path:
+    """Render a matplotlib figure (format from the suffix) and write it atomically."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format=Path(path).suffix.lstrip(".") or "png", dpi=dpi, **savefig_kw)
+    return write_atomic(path, buf.getvalue())
