@@ -6,14 +6,15 @@
 >>> print(report.table())                                                      # doctest: +SKIP
 
 Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF/Arrhenius),
-:mod:`fitting.prony` (Prony fit and refinement), :mod:`fitting.io` (material JSON),
+:mod:`fitting.prony` (Prony fit and refinement), :mod:`fitting.calibration` (the whole chain),
+:mod:`fitting.io` (material JSON), :mod:`fitting.files` (atomic writes),
 :mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``).
 """
 import importlib
 
 # Lazy: ``import fitting`` (or a submodule such as ``fitting.files``, or the command-line
 # tools) must not import vjax and JAX before the caller has chosen float64.
-_EXPORTS = {"calibrate": "calibrate", "Report": "calibrate", "read": "dma", "DMATable": "dma",
+_EXPORTS = {"calibrate": "calibration", "Report": "calibration", "read": "dma", "DMATable": "dma",
             "DMAFormatError": "dma", "default_data": "dma", "load_material": "io", "save_material": "io",
             "ShiftTable": "master"}
 __all__ = list(_EXPORTS)

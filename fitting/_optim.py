@@ -66,6 +66,24 @@ class LMSolution:
     converged: jax.Array
 
 
+def marquardt_step(J, r, lam, floor=1e-12, active=None):
+    """The Levenberg-Marquardt step -(J^T J + lam D)^-1 J^T r for residual ``r`` and Jacobian
+    ``J``, with Marquardt scaling D = diag(J^T J) floored at ``floor`` times its largest
+    entry (a parameter the residual hardly sees still gets damped instead of wandering
+    along the null directions of J). ``active`` (0/1): frozen parameters get a zero step."""
+    act = jnp.ones(J.shape[1], J.dtype) if active is None else active
+    Ja = J * act[None, :]
+    H = Ja.T @ Ja
+    d = jnp.diag(H)
+    d = jnp.maximum(d, floor * jnp.max(d) + 1e-300)
+    return -jnp.linalg.solve(H + lam * jnp.diag(d) + jnp.diag(1.0 - act), Ja.T @ r) * act
+
+
+def next_damping(lam, accepted):
+    """Damping after a trial step: divided by 3 after an accepted one, times 4 otherwise."""
+    return jnp.where(accepted, jnp.maximum(lam / 3.0, 1e-12), lam * 4.0)
+
+
 def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: float = 1e-10,
                         ftol: float = 1e-12, active=None, resid_jac: Callable | None = None) -> LMSolution:
     """Minimize 0.5 ||fun(x, *args)||^2 by Levenberg-Marquardt with Marquardt scaling.
@@ -95,19 +113,14 @@ def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: f
 
     def body(s):
         x, r, J, c, lam, k, _ = s
-        Ja = J * act[None, :]
-        g = Ja.T @ r
-        H = Ja.T @ Ja
-        d = jnp.diag(H)
-        d = jnp.maximum(d, 1e-12 * jnp.max(d) + 1e-300)
-        step = -jnp.linalg.solve(H + lam * jnp.diag(d) + jnp.diag(1.0 - act), g) * act
+        step = marquardt_step(J, r, lam, active=act)
         xn = x + step
         rn, Jn, cn = lin(xn)
         ok = jnp.isfinite(cn) & (cn < c)
         small = ok & (((c - cn) <= ftol * c) | (jnp.linalg.norm(step) <= xtol * (jnp.linalg.norm(x) + xtol)))
         x, r, J = jax.tree_util.tree_map(lambda a, b: jnp.where(ok, a, b), (xn, rn, Jn), (x, r, J))
         c = jnp.where(ok, cn, c)
-        lam = jnp.where(ok, jnp.maximum(lam / 3.0, 1e-12), lam * 4.0)
+        lam = next_damping(lam, ok)
         stuck = lam > 1e12
         return (x, r, J, c, lam, k + 1, small | stuck)
 

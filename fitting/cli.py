@@ -47,7 +47,7 @@ def main(argv=None) -> int:
     import jax
     jax.config.update("jax_enable_x64", True)
     from . import io, plots
-    from .calibrate import calibrate
+    from .calibration import calibrate
 
     out, code = output_json("vjax-fit", args.out)
     if code:
@@ -67,8 +67,8 @@ def main(argv=None) -> int:
             stem = os.path.splitext(out)[0]
             fit_mat = mat
             if rep.kind == "G" and kind == "E":  # plot against the data's own modulus
-                f = 2.0 * (1.0 + args.nu)
-                fit_mat = type(mat).prony(float(mat.E0) / f, mat.moduli / f, mat.times, mat.nu)
+                from .calibration import convert_modulus, tensile_over_shear
+                fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += plots.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
                                       rep.data_shift)
     except (ValueError, OSError) as e:

@@ -61,6 +61,8 @@ import numpy as np
 import vjax
 from vjax.material import Material, WLF
 
+from . import _optim
+
 __all__ = ["TorqueData", "TorqueFormatError", "read_torque_csv", "write_torque_csv", "roller_model", "pin_model",
            "Params", "TorqueFit", "fit_torque", "residual_jacobian", "identifiability", "gauss_newton_cov",
            "gradient_check"]
@@ -484,23 +486,20 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     loss, x, J, aux = best
     # Levenberg-Marquardt from Adam's best point, on the Jacobian Adam already uses: Adam
     # crawls once the loss is a narrow valley; Gauss-Newton steps reach the noise floor.
+    # The steps and damping of fitting._optim's Levenberg-Marquardt, driven from here
+    # (each trial is a set of bearing solves: reported, and kept only if they converged).
     lam = 1e-3
     for _ in range(polish):
-        Jn, r = np.asarray(J, float), np.asarray(aux[0], float)
-        H, g = Jn.T @ Jn, Jn.T @ r
-        if np.linalg.norm(2.0 * g / Nt) < gtol:
+        if float(jnp.linalg.norm(2.0 * (J.T @ aux[0]) / Nt)) < gtol:
             break
-        # Marquardt scaling, floored: a parameter the torque hardly sees would otherwise get
-        # no damping and wander along the null directions of J (loss unchanged, values wild)
-        d = np.maximum(np.diag(H), 1e-4 * np.max(np.diag(H)) + 1e-300)
-        step = -np.linalg.solve(H + lam * np.diag(d), g)
+        step = _optim.marquardt_step(J, aux[0], lam, floor=1e-4)
         J_new, aux_new = jac_fn(x + step)
         it += 1                                          # one more evaluation of every solve
         new_loss, g_new = loss_grad(J_new, aux_new)
         if usable(new_loss, aux_new) and new_loss < loss:
             # stop once a nearly Gauss-Newton step no longer gains
             done = loss - new_loss < 1e-6 * loss and lam < 1.0
-            loss, x, J, aux, lam = new_loss, x + step, J_new, aux_new, max(lam / 3, 1e-9)
+            loss, x, J, aux, lam = new_loss, x + step, J_new, aux_new, float(_optim.next_damping(lam, True))
             history.append((it, loss, float(jnp.linalg.norm(g_new)), time.perf_counter() - t_start))
             if progress:
                 print(f"  LM   {it:4d}  loss {loss:.6g}  lambda {lam:.1e}  {time.perf_counter() - t_start:7.1f} s",
@@ -508,7 +507,7 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
             if done:
                 break
         else:
-            lam *= 4.0
+            lam = float(_optim.next_damping(lam, False))
             if lam > 1e10:
                 break
     r, r_t, tq, ok = aux

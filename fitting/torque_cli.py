@@ -88,10 +88,10 @@ def _tensile(material, modulus, table):
     """E = 2 (1 + nu) G for a shear start material and a shear DMA table: the bearing scenes
     and the DMA term work with E."""
     import dataclasses
-    from vjax import Material
-    f = 2.0 * (1.0 + float(material.nu))
+    from .calibration import convert_modulus, tensile_over_shear
+    f = tensile_over_shear(material.nu)
     if modulus == "G":
-        material = Material.prony(float(material.E0) * f, material.moduli * f, material.times, material.nu)
+        material = convert_modulus(material, f)
     if table is not None and table.kind == "G":
         table = dataclasses.replace(table, storage=table.storage * f, loss=table.loss * f, kind="E")
     return material, table

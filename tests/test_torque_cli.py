@@ -82,3 +82,27 @@ def test_shear_start_material_is_converted_to_tensile(files, tmp_path, capsys):
     mat, _, modulus = io.load_material(out)
     assert modulus == "E"
     np.testing.assert_allclose(float(mat.E0), float(TRUE.E0), rtol=0.05)
+
+
+def test_command_line_tools_print_no_float32_warning():
+    import subprocess
+    import sys
+    for module in ("fitting.cli", "fitting.torque_cli"):
+        r = subprocess.run([sys.executable, "-m", module, "--help"], capture_output=True, text=True, timeout=120,
+                           env={**__import__("os").environ, "JAX_ENABLE_X64": "0"})
+        assert r.returncode == 0 and "usage" in r.stdout, r.stderr
+        assert "float32" not in r.stderr, (module, r.stderr)
+
+
+def test_written_files_are_readable_by_others(tmp_path):
+    """Atomic writes give the mode of a newly created file (0666 less the umask), not
+    tempfile's 0600."""
+    import os
+    import stat
+    old = os.umask(0o022)
+    try:
+        path = tmp_path / "m.json"
+        io.save_material(path, TRUE, WLF(8.86, 101.6, 25.0))
+        assert stat.S_IMODE(path.stat().st_mode) == 0o644
+    finally:
+        os.umask(old)

@@ -89,6 +89,18 @@ class Report:
         return "\n".join(lines)
 
 
+def tensile_over_shear(nu) -> float:
+    """E / G = 2 (1 + nu) for an isotropic material with constant Poisson ratio ``nu``."""
+    return 2.0 * (1.0 + float(nu))
+
+
+def convert_modulus(material: Material, factor) -> Material:
+    """The Prony material with every modulus multiplied by ``factor`` (e.g.
+    :func:`tensile_over_shear` for G -> E, its inverse for E -> G); times and nu kept."""
+    return Material.prony(float(material.E0) * factor, np.asarray(material.moduli) * factor,
+                          np.asarray(material.times), material.nu)
+
+
 def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tensile=True, shifts=None,
               drop_nonpositive=False, densities=(0.5, 0.75, 1.0, 1.25, 1.5), max_iter=300, plots_=True,
               stem="material"):
@@ -171,8 +183,8 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     sigma = dict(fit.sigma)
     out_kind = table.kind
     if table.kind == "G" and tensile:
-        f = 2.0 * (1.0 + nu)
-        mat = Material.prony(float(mat.E0) * f, np.asarray(mat.moduli) * f, np.asarray(mat.times), nu)
+        f = tensile_over_shear(nu)
+        mat = convert_modulus(mat, f)
         sigma = {k: (v * f if k == "E0" else [x * f for x in v] if k == "moduli" else v) for k, v in sigma.items()}
         out_kind = "E"
     shift_params = io._shift_to_dict(shift)
