@@ -68,6 +68,7 @@ import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
 from experiments import persson  # noqa: E402
+from vjax import reference  # noqa: E402
 
 
 def _write_csv(path, header, rows, comments=()):
@@ -168,10 +169,11 @@ L_CELL, R_CYL, E_HP, NU_HP, A_OVER_L = 1.0, 0.5, 1e6, 0.3, 0.025
 
 
 def hertz():
-    es = E_HP / (1 - NU_HP**2)
+    """Load, half-width and peak pressure of the Hertz case: the load that gives a = A_OVER_L L."""
     a = A_OVER_L * L_CELL
-    F = a * a * np.pi * es / (4 * R_CYL)
-    return F, a, 2 * F / (np.pi * a)
+    F = a * a * np.pi * E_HP / (1 - NU_HP**2) / (4 * R_CYL)      # inverts a^2 = 4 F R / (pi E*)
+    a_ref, p0, _ = reference.hertz_line_contact(F, R_CYL, E_HP, NU_HP)
+    return F, float(a_ref), float(p0)
 
 
 def _hp_interference(q, args):

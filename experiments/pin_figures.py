@@ -41,6 +41,7 @@ import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
 from experiments import persson  # noqa: E402
+from vjax import reference  # noqa: E402
 
 
 def _write_csv(path, header, rows, comments=()):
@@ -86,9 +87,9 @@ def persson_validation(out, quick):
     for Ft in sorted(set(loads) | set(ladder)):
         load = Ft * E_EL * R_EL
         r, ref = persson.small_displacement_pin(m, R_EL, DR_EL, load, n)
-        b = persson.persson_b_from_load(load, E_EL, R_EL, DR_EL)
+        b = reference.persson_b_from_load(load, E_EL, R_EL, DR_EL)
         th = np.asarray(r.theta)
-        p_num, p_an = np.asarray(r.pressure), persson.persson_pressure(th, b, E_EL, R_EL, DR_EL)
+        p_num, p_an = np.asarray(r.pressure), reference.persson_pressure(th, b, E_EL, R_EL, DR_EL)
         alpha = 2 * np.arctan(b)
         alpha_num = persson.edge_angle(th, p_num)
         err = np.abs(p_num - p_an) / p_an.max()
@@ -117,7 +118,7 @@ def persson_validation(out, quick):
                 rows.append([Ft, float(np.angle(np.exp(1j * t))), a / E_EL, b_ / E_EL])
     _write_csv(out / "pin_persson_pressure.csv", ["F_tilde", "theta_rad", "p_over_E_numerical",
                                                          "p_over_E_analytical"], rows,
-                      comments=[f"n={n}; analytical: experiments/persson.py"])
+                      comments=[f"n={n}; analytical: vjax.reference (Persson)"])
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2), constrained_layout=True)
     for i, (Ft, th, p_num, p_an) in enumerate(pressures):
@@ -126,16 +127,16 @@ def persson_validation(out, quick):
         ax.plot(thw, p_num[o] / E_EL, color=f"C{i}", lw=1.5, label=f"F~ = {Ft:g}")
         sel = o[(p_an[o] > 0)][:: max(1, n // 128)]
         ax.plot(np.angle(np.exp(1j * th[sel])), p_an[sel] / E_EL, "o", ms=3.5, mfc="none", color="k")
-    ax.plot([], [], "o", mfc="none", color="k", label="analytical (persson.py)")
+    ax.plot([], [], "o", mfc="none", color="k", label="analytical (vjax.reference)")
     ax.set(xlabel="theta (rad)", ylabel="p~ = p / E", xlim=(-1.5, 1.5),
            title=f"Fig. 2.5: rigid pin, R = {R_EL} m, dR = {DR_EL:g} m, n = {n}")
     ax.legend(fontsize=8)
     _common.save_figure(fig, out / "pin_fig2_5.png")
 
-    bc = persson.persson_limit_b()
+    bc = reference.persson_limit_b()
     bs = np.linspace(1e-3, bc, 300)
     fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
-    ax.plot(bs, persson.persson_load_parameter(bs), "k-", lw=1.2, label="analytical")
+    ax.plot(bs, reference.persson_load_parameter(bs), "k-", lw=1.2, label="analytical")
     lr = np.array(lp_rows)
     ax.plot(lr[:, 3], lr[:, 1], "o", color="C3", ms=5, mfc="none", label=f"pin_in_hole, n = {n}")
     ax.axvline(bc, color="0.5", ls=":", lw=1)
@@ -279,8 +280,8 @@ def main(out_dir="experiments/out", quick=False):
     summary, lp_rows, n_el = persson_validation(out, quick)
     lines.append(_common.format_table(
         ["F~", "alpha_an", "alpha_num", "p err interior", "p err max", "peak diff ref=1m"], summary))
-    bc = persson.persson_limit_b()
-    a23 = 2 * np.arctan(persson.persson_b_from_load(2.3e-2 * E_EL * R_EL, E_EL, R_EL, DR_EL))
+    bc = reference.persson_limit_b()
+    a23 = 2 * np.arctan(reference.persson_b_from_load(2.3e-2 * E_EL * R_EL, E_EL, R_EL, DR_EL))
     lines.append(f"Persson (n = {n_el}): alpha at F~ = 2.3e-2: {a23:.4f} rad (thesis 1.24); neat-fit angle "
                  f"{2*np.arctan(bc):.5f} rad (b = {bc:.5f}). Errors relative to the analytical peak; 'interior' "
                  "excludes the two elements at each contact edge.")

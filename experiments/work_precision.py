@@ -8,7 +8,7 @@ Ladders (float64, one solve per point, the median of warm calls; the first call,
 tracing + compilation + one run, is reported separately as ``compile_s``):
 
 - **pin** (a) elastic incompressible plane against the analytical Persson-type solution
-  (:mod:`experiments.persson`; R = 0.08 m, dR = 4e-5 m, E = 1 MPa, F~ = 1e-2, the rigid-body
+  (:mod:`vjax.reference`; R = 0.08 m, dR = 4e-5 m, E = 1 MPa, F~ = 1e-2, the rigid-body
   reference chosen so that the pin offset is dR, see ``persson.small_displacement_pin``):
   error = max |p - p_exact| / p_max over |theta| < 0.9 alpha (the contact edges, where p
   has a square-root profile, cost one element of accuracy), and the contact-angle error.
@@ -108,11 +108,12 @@ def pin_rows(quick):
     import numpy as np
     import vjax
     from experiments import bench_pin, persson
+    from vjax import reference
     rows = []
     E, R, DR, Ft = 1e6, 0.08, 4e-5, 1e-2
     m = vjax.Material.elastic(E, 0.5)
     load = Ft * E * R
-    b = persson.persson_b_from_load(load, E, R, DR)
+    b = reference.persson_b_from_load(load, E, R, DR)
     alpha = 2 * np.arctan(b)
     ns = (64, 128) if quick else (128, 256, 512, 1024, 2048, 4096, 8192)
     reps = 2 if quick else 7
@@ -123,7 +124,7 @@ def pin_rows(quick):
         first, warm = _common.time_fn(fn, repeats=reps)
         r = fn()
         th = np.asarray(r.theta)
-        p_an = persson.persson_pressure(th, b, E, R, DR)
+        p_an = reference.persson_pressure(th, b, E, R, DR)
         thw = np.abs(np.angle(np.exp(1j * th)))
         deep = thw < 0.9 * alpha          # away from the sqrt-type edges (their error is one element)
         err = float(np.max(np.abs(np.asarray(r.pressure) - p_an)[deep]) / p_an.max())
@@ -140,7 +141,7 @@ def pin_rows(quick):
         first, warm = _common.time_fn(fn, *args, repeats=reps)
         p, it, conv = fn(*args)
         th = np.asarray(vjax.grid(n)[0])
-        p_an = persson.persson_pressure(th, b, E, R, DR)
+        p_an = reference.persson_pressure(th, b, E, R, DR)
         deep = np.abs(np.angle(np.exp(1j * th))) < 0.9 * alpha
         err = float(np.max(np.abs(np.asarray(p) - p_an)[deep]) / p_an.max())
         err_a = abs(persson.edge_angle(th, np.asarray(p)) - alpha)

@@ -1,20 +1,8 @@
 """Tests of the journal bearing scene (vjax.journal_bearing, thesis Chapter 3).
 
-Rigid limit: the classical infinitely long bearing. Closed forms (full and half
-Sommerfeld) are those of e.g. Hamrock, Schmid & Jacobson, "Fundamentals of Fluid Film
-Lubrication" (2004), ch. 10, or Szeri, "Fluid Film Lubrication" (2011), ch. 3, with
-U = sum of the surface speeds:
-
-    full:  W = 12 pi eta U R^2 eps / (c^2 (2 + eps^2) sqrt(1 - eps^2)),  attitude pi/2,
-           journal friction torque 4 pi eta U R^2 (1 + 2 eps^2) / (c (2 + eps^2) sqrt(1 - eps^2))
-    half:  W = 6 eta U R^2 eps sqrt(pi^2 (1 - eps^2) + 4 eps^2) / (c^2 (2 + eps^2)(1 - eps^2)),
-           tan(attitude) = pi sqrt(1 - eps^2) / (2 eps).
-
-Reynolds (Swift-Stieber) conditions have no closed form: the reference is an independent
-semi-analytical solution (the film flux q = v h(theta_2) fixed by the rupture point,
-p(theta) = 12 eta R v int (h - h_2)/h^3 from the groove, theta_2 the root of p(theta_2) = 0,
-by scipy quadrature and brentq), the classical construction of Pinkus & Sternlicht,
-"Theory of Hydrodynamic Lubrication" (1961), ch. 3.
+Rigid limit: the classical infinitely long bearing, :func:`vjax.reference.long_bearing`
+(full and half Sommerfeld in closed form, Reynolds / Swift-Stieber conditions by quadrature;
+each checked independently in tests/test_reference.py).
 """
 import dataclasses
 
@@ -22,15 +10,13 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
-from scipy import integrate, optimize
 
 import vjax
-from vjax import JournalOptions, journal_bearing
+from vjax import JournalOptions, journal_bearing, reference
 
 # A rigid bearing: R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 V = 0.5 * WJ * (R - C)  # entrainment speed
-U = 2 * V
 
 # The thesis case (Fig. 3.5; docs/theory.md §11).
 RB, CB, ETAB, E0 = 0.1, 5e-4, 1e-3, 1e6
@@ -40,38 +26,13 @@ THESIS_SPEEDS = dict(omega_shaft=-0.4, omega_housing=0.2)
 OPT64, OPT128 = JournalOptions(n=64), JournalOptions(n=128)
 
 
-def full_sommerfeld_load(eps):
-    return 12 * np.pi * ETA * U * R**2 * eps / (C**2 * (2 + eps**2) * np.sqrt(1 - eps**2))
-
-
-def half_sommerfeld(eps):
-    W = (6 * ETA * U * R**2 * eps * np.sqrt(np.pi**2 * (1 - eps**2) + 4 * eps**2)
-         / (C**2 * (2 + eps**2) * (1 - eps**2)))
-    return W, np.arctan(np.pi * np.sqrt(1 - eps**2) / (2 * eps))
-
-
-def reynolds_reference(eps):
-    """Load, attitude and rupture angle with Reynolds conditions, groove at theta = pi."""
-    def h(t):
-        return C * (1 - eps * np.cos(t))
-
-    def p(t, t2):
-        h2 = h(t2)
-        return 12 * ETA * R * V * integrate.quad(lambda s: (h(s) - h2) / h(s) ** 3, -np.pi, t,
-                                                 epsabs=0, epsrel=1e-12, limit=200)[0]
-
-    t2 = optimize.brentq(lambda t2: p(t2, t2), 1e-6, np.pi - 1e-6, xtol=1e-14)
-    Fx = -R * integrate.quad(lambda t: p(t, t2) * np.cos(t), -np.pi, t2, epsrel=1e-11, limit=200)[0]
-    Fy = -R * integrate.quad(lambda t: p(t, t2) * np.sin(t), -np.pi, t2, epsrel=1e-11, limit=200)[0]
-    return np.hypot(Fx, Fy), np.arctan2(Fy, -Fx), t2
+def rigid(eps, conditions):
+    return reference.long_bearing(eps, R, C, ETA, V, conditions)
 
 
 @pytest.fixture(scope="module")
 def reynolds_refs():
-    import warnings
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # quad's roundoff notes near the 1e-12 target
-        return {eps: reynolds_reference(eps) for eps in (0.3, 0.6, 0.8)}
+    return {eps: rigid(eps, "reynolds") for eps in (0.3, 0.6, 0.8)}
 
 
 def order(ns, errs):
@@ -84,18 +45,21 @@ def order(ns, errs):
 
 @pytest.mark.parametrize("eps", [0.3, 0.6, 0.8])
 def test_full_sommerfeld_closed_form(eps):
-    sol = journal_bearing(R, C, ETA, full_sommerfeld_load(eps), omega_shaft=WJ, cavitation="sommerfeld", options=OPT128)
+    sol = journal_bearing(R, C, ETA, rigid(eps, "sommerfeld")["load"], omega_shaft=WJ, cavitation="sommerfeld",
+                          options=OPT128)
     assert bool(sol.converged)
     assert abs(float(sol.eccentricity) - eps) < 3e-4
     assert abs(float(sol.attitude_angle) - np.pi / 2) < 1e-10   # exactly 90 degrees
-    # friction torque on the journal (the closed form's lever arm is R, ours R_J)
-    T = 4 * np.pi * ETA * U * R**2 * (1 + 2 * eps**2) / (C * (2 + eps**2) * np.sqrt(1 - eps**2))
+    # friction torque on the journal, 8 pi eta v R^2 (1 + 2 eps^2) / (c (2 + eps^2) sqrt(1 - eps^2))
+    # (Hamrock, Schmid & Jacobson 2004, ch. 10; the closed form's lever arm is R, ours R_J)
+    T = 8 * np.pi * ETA * V * R**2 * (1 + 2 * eps**2) / (C * (2 + eps**2) * np.sqrt(1 - eps**2))
     assert float(sol.torque_shaft) * R / (R - C) == pytest.approx(-T, rel=3e-4)
 
 
 @pytest.mark.parametrize("eps", [0.3, 0.6, 0.8])
 def test_half_sommerfeld_closed_form(eps):
-    W, phi = half_sommerfeld(eps)
+    ref = rigid(eps, "half_sommerfeld")
+    W, phi = float(ref["load"]), float(ref["attitude"])
     sol = journal_bearing(R, C, ETA, W, omega_shaft=WJ, cavitation="half_sommerfeld", options=OPT128)
     assert bool(sol.converged)
     assert abs(float(sol.eccentricity) - eps) < 5e-4
@@ -108,14 +72,15 @@ def test_half_sommerfeld_closed_form(eps):
 def test_sommerfeld_second_order():
     # (the half-Sommerfeld solve is the same linear system, clipped afterwards)
     ns = np.array([32, 64, 128])
-    errs = [float(journal_bearing(R, C, ETA, full_sommerfeld_load(0.6), omega_shaft=WJ, cavitation="sommerfeld",
+    errs = [float(journal_bearing(R, C, ETA, rigid(0.6, "sommerfeld")["load"], omega_shaft=WJ, cavitation="sommerfeld",
                                   options=JournalOptions(n=int(n))).eccentricity) - 0.6 for n in ns]
     assert order(ns, errs) == pytest.approx(2.0, abs=0.1)
 
 
 def test_reynolds_conditions_vs_reference(reynolds_refs):
     n = 256
-    for eps, (W, phi, t2) in reynolds_refs.items():
+    for eps, ref in reynolds_refs.items():
+        W, phi, t2 = (float(ref[k]) for k in ("load", "attitude", "rupture"))
         sol = journal_bearing(R, C, ETA, W, omega_shaft=WJ, options=JournalOptions(n=n))
         assert bool(sol.converged)
         assert abs(float(sol.eccentricity) - eps) < 1e-4
@@ -129,7 +94,7 @@ def test_reynolds_conditions_vs_reference(reynolds_refs):
 
 
 def test_reynolds_grid_convergence(reynolds_refs):
-    W, phi, _ = reynolds_refs[0.3]
+    W = float(reynolds_refs[0.3]["load"])
     ns = np.array([64, 128, 256])
     errs = [float(journal_bearing(R, C, ETA, W, omega_shaft=WJ, options=JournalOptions(n=int(n))).eccentricity) - 0.3
             for n in ns]

@@ -23,6 +23,7 @@ from .contact import ContactOptions, ContactSolution, solve_contact
 from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .journal import JournalOptions, JournalResult, journal_bearing
 from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
+from . import reference
 from .sweep import sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
@@ -30,7 +31,7 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "eff
            "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
            "JournalOptions", "JournalResult", "journal_bearing",
-           "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "sweep"]
+           "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep"]
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(

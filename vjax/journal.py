@@ -96,7 +96,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _scene, _solve, reynolds
+from . import _checks, _scene, _solve, reference, reynolds
 from .bodies import as_body, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
@@ -219,22 +219,12 @@ class _Config:
     tol: float
 
 
-def _rigid_eps(G):
-    """Invert the rigid half-Sommerfeld load g(eps) = G (g increases from 0 to inf)."""
-    return _solve.bisect(lambda e: _half_sommerfeld_g(e) - G, jnp.zeros_like(G), jnp.full_like(G, 0.9999), 60)
-
-
-def _half_sommerfeld_g(eps):
-    """|W| c^2 / (12 eta |v| R^2) of the rigid half-Sommerfeld bearing."""
-    return eps * jnp.sqrt(jnp.pi**2 * (1 - eps**2) + 4 * eps**2) / ((2 + eps**2) * (1 - eps**2))
-
-
 def _guess(pr: _Params, n, speed_factor=1.0):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude]."""
     theta, _ = grid(n)
     v = pr.v * speed_factor
     G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(v) * pr.R**2)
-    eps = jnp.minimum(_rigid_eps(G), 0.95)
+    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(G), 0.95)
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
          / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
@@ -302,7 +292,7 @@ def _staged(pr: _Params, t):
     t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
     """
     G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
-    M = jnp.maximum(1.0, G / _half_sommerfeld_g(0.6))
+    M = jnp.maximum(1.0, G / reference.half_sommerfeld_load(0.6))
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
     s = jnp.clip(t, 0.0, 1.0)
     scale = lambda op: None if op is None else RingOperator(op.symbol * s, op.n)
