@@ -4,7 +4,7 @@ Run::
 
     PYTHONPATH=. python -m experiments.journal_figures [out_dir] [--quick]
 
-Thesis case (Section 3.2.2, DESIGN.md section 4): R_B = 0.1 m, c = 5e-4 m (R_J = R_B - c),
+Thesis case (Section 3.2.2, docs/theory.md §11): R_B = 0.1 m, c = 5e-4 m (R_J = R_B - c),
 eta = 1e-3 Pa s, standard linear solid Einf = 100 MPa, E0 = Einf/100 = 1 MPa, relaxation
 time tau = 1 s, nu = 0.5, F~ = |F|/(E0 R_B) = 2.2e-3 (|F| = 220 N/m, downward), groove at
 the largest clearance at ambient pressure, Reynolds cavitation, log-R reference length 1 m.

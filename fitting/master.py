@@ -1,6 +1,6 @@
 """Master curve: horizontal shift factors from the data, and WLF / Arrhenius fits.
 
-Time-temperature superposition (DESIGN.md section 5): E*(omega, T) = E*(a_T(T) omega, T_ref),
+Time-temperature superposition (docs/theory.md §14): E*(omega, T) = E*(a_T(T) omega, T_ref),
 so the sweep at temperature T, plotted against the reduced frequency a_T omega, lies on the
 master curve at T_ref. Hotter sweeps have a_T < 1 (log10 a_T < 0).
 

@@ -74,7 +74,7 @@ def test_torque_peaks_at_intermediate_speed_and_resists_motion():
 
 
 def test_memory_models_agree_slowly_and_part_fast():
-    """(An independent measurement, docs/theory.md §1): same torque at omega~ <= 0.1, about
+    """(An independent measurement, docs/theory.md §3): same torque at omega~ <= 0.1, about
     2x apart at omega~ = 1 and 5x at 3 (periodic larger)."""
     ratio = {wt: float(solve(wt, "periodic").torque / solve(wt, "thesis").torque) for wt in (0.03, 1.0, 3.0)}
     assert abs(ratio[0.03] - 1) < 0.02

@@ -60,7 +60,7 @@ def test_compliance_times_modulus_is_one(m, logw):
 def test_creep_spectrum_reproduces_the_compliance(m):
     spec = m.creep_spectrum()
     assert np.all(np.asarray(spec.C) > 0) and np.all(np.asarray(spec.retardation_times) > 0)
-    # retardation times interlace the relaxation times (DESIGN.md section 3)
+    # retardation times interlace the relaxation times (docs/theory.md §1)
     tau, lam = np.sort(np.asarray(m.times)), np.sort(np.asarray(spec.retardation_times))
     assert np.all(lam >= tau * (1 - 1e-12))
     w = np.concatenate([[0.0], 10.0 ** np.linspace(-14, 14, 57)])

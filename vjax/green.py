@@ -24,7 +24,7 @@ in closed form; tests compare them with the Michell (Airy stress function) solut
 - ``hole``: hole in an infinite plane, A.39 / A.45. Mode n >= 2 compliance
   (1+nu)/2 [kappa/(n-1) + 1/(n+1)] R/E; n = 0 gives Lame's p R (1+nu)/E.
 - ``cylinder``: cylinder fixed at its centre, A.56 / A.60 with A'(theta) = -A(theta)
-  (the principal branch of the printed A' is wrong for nu != 0.5, DESIGN.md section 2).
+  (the principal branch of the printed A' is wrong for nu != 0.5, docs/theory.md §5).
   Mode n >= 2: (1+nu)/2 [1/(n-1) + kappa/(n+1)] R/E; n = 0: (1+nu)(1-2nu) R/E (zero for
   an incompressible disc).
 - ``diametral``: cylinder under two opposite radial forces at 0 and pi (A.67 / A.69),

@@ -16,7 +16,7 @@ The compliance 1/E* has the retardation (creep) form of Eq. 2.3-2.4,
 
 whose retardation times ``lambda_k`` are the zeros ``s_k = -1/lambda_k`` of the Laplace
 modulus E(s) = E0 + sum E_k s tau_k/(1 + s tau_k). They interlace the poles ``-1/tau_k``
-(DESIGN.md section 3), so :meth:`Material.creep_spectrum` brackets each one between
+(docs/theory.md §1), so :meth:`Material.creep_spectrum` brackets each one between
 consecutive poles and bisects in log|s|; polynomial root finding fails for spectra that
 span many decades.
 

@@ -1,4 +1,4 @@
-"""Steady-state viscoelastic ring operator sigma -> u, applied by FFT (DESIGN.md section 3).
+"""Steady-state viscoelastic ring operator sigma -> u, applied by FFT (docs/theory.md §2-§3).
 
 A ring of radius R is cut into N equal elements (centres theta_i = 2 pi i / N, half-width
 alpha = pi / N, constant pressure per element). Eq. 2.18 couples them through the
@@ -23,7 +23,7 @@ Memory models (``memory=``):
 - a number m > 0 of revolutions since the rolling started: the same with 2 pi m; m = 1 is
   the thesis, m -> inf the periodic steady state (t_run = 2 pi m / omega).
 
-The two differ where omega*lambda_k is not small (DESIGN.md: a factor 2 in pin friction
+The two differ where omega*lambda_k is not small (docs/theory.md §3: a factor 2 in pin friction
 torque at omega*tau = 1). The periodic model is what a machine sees after running in;
 the thesis model reproduces the thesis's figures. Elastic materials skip all of this.
 
