@@ -18,6 +18,7 @@ computation, e.g. at the top of a script::
 from __future__ import annotations
 
 import csv
+import dataclasses
 import io
 import math
 import statistics
@@ -26,7 +27,7 @@ from pathlib import Path
 
 from fitting import files
 
-__all__ = ["enable_x64", "setup", "atomic_write_text", "save_figure",
+__all__ = ["Check", "StageReport", "enable_x64", "setup", "atomic_write_text", "save_figure",
            "write_csv", "time_fn", "format_table", "print_table"]
 
 
@@ -36,6 +37,51 @@ def enable_x64() -> None:
     jax.config.update("jax_enable_x64", True)
     import matplotlib
     matplotlib.use("Agg")
+
+
+@dataclasses.dataclass(frozen=True)
+class Check:
+    """One check of the main job: ``what`` was compared with ``reference``; ``value`` must lie
+    within ``tolerance`` of ``target`` (absolute), or be >= / <= a bound (``kind``)."""
+
+    what: str
+    value: float
+    target: float
+    tolerance: float
+    reference: str
+    kind: str = "abs"        # "abs": |value - target| <= tolerance; "max": value <= target; "min": value >= target
+
+    @property
+    def passed(self) -> bool:
+        v = float(self.value)
+        if not math.isfinite(v):
+            return False
+        if self.kind == "max":
+            return v <= self.target
+        if self.kind == "min":
+            return v >= self.target
+        return abs(v - self.target) <= self.tolerance
+
+    def expected(self) -> str:
+        if self.kind == "max":
+            return f"<= {self.target:.4g}"
+        if self.kind == "min":
+            return f">= {self.target:.4g}"
+        return f"{self.target:.4g} +- {self.tolerance:.2g}"
+
+
+@dataclasses.dataclass(frozen=True)
+class StageReport:
+    """What a stage of the main job returns: its plain-text output, what it computes (one
+    paragraph for the summary), its checks and its figures with their captions."""
+
+    text: str
+    about: str = ""
+    checks: tuple = ()
+    figures: tuple = ()      # (file name, caption)
+
+    def __str__(self):
+        return self.text
 
 
 def setup(out_dir="experiments/out") -> Path:

@@ -325,7 +325,7 @@ def main(out_dir="experiments/out", quick=False):
              "side; max_diff: max over th of u(-th) - u(th) (> 0: trailing side higher), at_deg: "
              "where; u_mean: mode n = 0",
              _common.format_table(header, table), "",
-             "creep-spectrum check, max |J_creep/J* - 1| over omega 1e-6..1e11 rad/s: "
+             "creep-spectrum check, max abs(J_creep / J* - 1) over omega 1e-6..1e11 rad/s: "
              + ", ".join(f"{k} {v:.2e}" for k, v in errs.items()),
              "Prony12 retardation times lambda_k (s): "
              + " ".join(f"{x:.3g}" for x in spectra["Prony12"]["lam"]),
@@ -337,7 +337,26 @@ def main(out_dir="experiments/out", quick=False):
     text = "\n".join(lines) + "\n"
     _common.atomic_write_text(summary_path, text)
     print(text, end="")
-    return text
+    lam_sls = float(np.max(spectra["SLS"]["lam"]))
+    hole = {(mem, wt): asymmetry(u) for (mem, wt), u in profiles["hole"].items()}
+    checks = [
+        _common.Check("creep spectrum: max abs(J_creep / J* - 1) over omega 1e-6..1e11 rad/s", max(errs.values()), 1e-8,
+                      0, "the complex compliance 1/E*", "max"),
+        _common.Check("SLS retardation time (s)", lam_sls, 0.1, 1e-12, "(Einf/E0) tau = 0.1 s (Eq. 1.41)"),
+        _common.Check("moving load on a hole: smallest trailing/leading displacement ratio",
+                      min(a["u_trail"] / a["u_lead"] for (mem, wt), a in hole.items() if 0 < wt < 1e3), 1.0, 0,
+                      "viscoelastic lag: the trailing side is higher (Fig. 2.3)", "min"),
+    ]
+    figures = (
+        ("fig2_3_A4_hole.png", f"Fig. 2.3 / A.4: displacement of a hole (R = {R} m) under 1 Pa on one element, "
+                               "SLS E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, at several speeds, both memory models"),
+        ("figA6_diametral.png", "Fig. A.6: cylinder under diametral forces"),
+        ("ring_profiles_u_theta.png", "Displacement profiles of hole and cylinder versus angle"),
+        ("material_curves.png", "Storage and loss moduli, tan delta, creep spectra of the test materials"),
+    )
+    about = ("The building blocks: material laws and their creep spectra, and the ring operators "
+             "(Green's functions of a hole and a cylinder) under a moving unit pressure.")
+    return _common.StageReport(text, about, tuple(checks), figures)
 
 
 if __name__ == "__main__":

@@ -57,6 +57,8 @@ R, R_PIN, E0, EINF, TAU, F_TILDE = 0.08, 0.075, 1e6, 1e7, 0.01, 3.5e-2
 MEMORIES = ("periodic", "thesis")
 SNAP_SPEEDS = (1e-4, 0.1, 1.0, 10.0, 1e3)
 RATIO_SPEEDS = (0.1, 0.3, 1.0, 3.0)
+CASE = (f"rigid pin R' = {R_PIN} m in a hole R = {R} m of an SLS plane (E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, "
+        f"nu = 0.5), " + r"$\tilde F$" + f" = {F_TILDE}")
 COLORS = {"periodic": "C0", "thesis": "C3"}
 
 
@@ -206,15 +208,15 @@ def viscoelastic(out, quick):
             thw = np.angle(np.exp(1j * th))
             o = np.argsort(thw)
             axp.plot(thw[o], r.pressure[i][o] / E0, color=COLORS[mem], ls=ls, label=mem)
-        ax.set(aspect="equal", xlim=(-1.15, 1.15), ylim=(-1.15, 1.15), title=f"omega~ = {speeds[i]:g}",
-               xlabel="x~")
+        ax.set(aspect="equal", xlim=(-1.15, 1.15), ylim=(-1.15, 1.15), title=rf"$\tilde\omega$ = {speeds[i]:g}",
+               xlabel=r"$x/R$")
         axp.set(xlim=(-1.2, 1.2), xlabel="theta (rad)")
         if j == 0:
-            ax.set_ylabel("y~")
-            axp.set_ylabel("p~ = p/E0")
+            ax.set_ylabel(r"$y/R$")
+            axp.set_ylabel(r"$\tilde p = p/E_0$")
             axp.legend(fontsize=7)
-    fig.suptitle("Fig. 2.7: hole contour (black dashed: undeformed), pin (orange), pressure; "
-                 "solid: periodic, dashed: thesis memory", fontsize=9)
+    fig.suptitle(f"Fig. 2.7: {CASE}.\nTop: hole contour at true scale (magnification 1; black dashed: undeformed), "
+                 "pin (orange); bottom: pressure. Solid: periodic memory, dashed: thesis memory", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_7.png")
 
     # Fig. 2.8: magnified contour (K = 10), whole hole
@@ -228,9 +230,9 @@ def viscoelastic(out, quick):
             rr = 1 + K * closed(res[mem].displacement[i]) / R
             ax.plot(rr * np.cos(tc), rr * np.sin(tc), color=COLORS[mem], ls="-" if mem == "periodic" else "--",
                     lw=1.0, label=mem)
-        ax.set(aspect="equal", xlim=(-1.6, 1.6), ylim=(-1.6, 1.6), title=f"omega~ = {speeds[i]:g}", xlabel="x~")
+        ax.set(aspect="equal", xlim=(-1.6, 1.6), ylim=(-1.6, 1.6), title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
         if j == 0:
-            ax.set_ylabel("y~")
+            ax.set_ylabel(r"$y/R$")
             ax.legend(fontsize=7, loc="lower left")
     fig.suptitle(f"Fig. 2.8: deformed hole contour magnified K = {K:g} (u_r positive outward)", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_8.png")
@@ -249,9 +251,9 @@ def viscoelastic(out, quick):
             Fx, Fy = r.force[i]
             ax.annotate("", xy=(0.8 * Fx / load, 0.8 * Fy / load), xytext=(0, 0),
                         arrowprops=dict(arrowstyle="->", color=COLORS[mem], ls=ls))
-        ax.set(aspect="equal", xlim=(-1.1, 1.4), ylim=(-1.2, 1.2), title=f"omega~ = {speeds[i]:g}", xlabel="x~")
+        ax.set(aspect="equal", xlim=(-1.1, 1.4), ylim=(-1.2, 1.2), title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
         if j == 0:
-            ax.set_ylabel("y~")
+            ax.set_ylabel(r"$y/R$")
             ax.legend(fontsize=7, loc="lower left")
     fig.suptitle("Fig. 2.9: pressure on the hole (radial offset) and net force F_tot on the plane "
                  "(arrows, |F| -> 0.8)", fontsize=9)
@@ -307,7 +309,37 @@ def main(out_dir="experiments/out", quick=False):
     text = "\n\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "pin_figures.txt", text + "\n")
-    return text
+    C = {m_: np.abs(res[m_].torque) / (load * R) for m_ in MEMORIES}
+    ratios = {row[0]: row[3] for row in ratio_rows}
+    checks = [
+        _common.Check("pin vs Persson: max pressure error off the edge elements (of the peak)",
+                      max(row[3] for row in summary), 1e-3, 0, "vjax.reference Persson pin (Figs. 2.5-2.6)", "max"),
+        _common.Check("contact semi-angle at F~ = 2.3e-2 (rad)", summary[-1][2], 1.24, 5e-3, "thesis: 1.24 rad"),
+        _common.Check("elastic limit: C~ at omega~ = 1e3 over the peak C~ (periodic)",
+                      C["periodic"][-1] / C["periodic"].max(), 1e-3, 0, "glassy limit: no dissipation", "max"),
+        _common.Check("torque ratio periodic/thesis at omega~ = 0.1", ratios[_nearest(speeds, 0.1)], 1.0, 0.02,
+                      "docs/theory.md §3: equal at low speed"),
+        _common.Check("torque ratio periodic/thesis at omega~ = 1", ratios[_nearest(speeds, 1.0)], 2.0, 0.3,
+                      "docs/theory.md §3: about 2"),
+    ]
+    figures = (
+        ("pin_fig2_5.png", f"Fig. 2.5: pressure p/E versus theta, numerics and Persson's solution, elastic plane "
+                           f"E = {E_EL:g} Pa, R = {R_EL} m, clearance {DR_EL} m, several loads F~"),
+        ("pin_fig2_6.png", "Fig. 2.6: load parameter E' dR/F versus contact angle, numerics and Persson"),
+        ("pin_fig2_7.png", f"Fig. 2.7: contour (true scale) and pressure at five speeds; {CASE}"),
+        ("pin_fig2_8.png", "Fig. 2.8: the same contours magnified 10x"),
+        ("pin_fig2_9.png", "Fig. 2.9: pressure drawn normal to the hole and the net force on the plane"),
+        ("pin_fig2_10.png", "Fig. 2.10: friction torque C~ = |C|/(F R), tan of the force angle, friction radius "
+                            "R*/R versus omega~, both memory models"),
+    )
+    about = ("A rigid pin rolling in a hole in a viscoelastic plane (thesis Section 2.2): first the elastic "
+             "case against Persson's analytical solution, then the SLS plane over seven decades of speed "
+             "with both memory models (friction torque, force angle, friction radius).")
+    return _common.StageReport(text, about, tuple(checks), figures)
+
+
+def _nearest(speeds, w):
+    return speeds[_snap_index(speeds, w)]
 
 
 if __name__ == "__main__":

@@ -67,6 +67,11 @@ def _write_csv(path, header, rows, comments=()):
     return _common.write_csv(path, header, [[_py(x) for x in r] for r in rows], comments=comments)
 
 
+CASE = (f"R_O = {RO * 1e3:g} mm, R_I = {RI * 1e3:g} mm, Z = {Z} rollers of D = {D * 1e3:g} mm, zero clearance, "
+        f"SLS rings (E0 = {E0 / 1e6:g} MPa, Einf = {EINF / 1e6:g} MPa, tau = {TAU} s, nu = {NU}), "
+        r"$\tilde F$" + f" = {F_TILDE}")
+
+
 def shaft_speed(w_tilde, tau=TAU):
     """omega_I giving omega_c tau = w_tilde with the outer ring fixed (omega_c = omega_I R_I/(R_I+R_O))."""
     return w_tilde / tau * (RI + RO) / RI
@@ -345,7 +350,32 @@ def main(out_dir="experiments/out", quick=False):
     text = "\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "roller_figures.txt", text + "\n")
-    return text
+    i14 = int(np.argmin(np.abs(np.log(w / 1.4))))
+    checks = [
+        _common.Check("all sweep points converged (count of failures)",
+                      sum(int(np.sum(~np.asarray(s["converged"]))) for s in torque_res.values()), 0, 0,
+                      "solver report", "max"),
+        _common.Check("load balance: max abs(F_x(inner ring) - F) / F over every sweep",
+                      max(float(np.max(s["load_error"])) for s in torque_res.values()), 1e-9, 0,
+                      "Eq. 2.38 equilibrium", "max"),
+        _common.Check("elastic rings: Q_max Z / F_r", ratio, 4.08, 0.03 * 4.08,
+                      "Stribeck/Harris line contact 4.08 (3%)"),
+        _common.Check(f"rollers 3 and 8 at omega~ = {w[i14]:.3g}, periodic memory: their load (N/m)",
+                      float(np.max(res["periodic"]["loads"][i14, [2, 7]])), 0.0, 0, "thesis Fig. 2.14: no contact",
+                      "max"),
+    ]
+    figures = (
+        ("roller_fig2_14.png", f"Fig. 2.14: deflection and ring displacements at the rollers versus omega~; {CASE}"),
+        ("roller_fig2_15.png", "Fig. 2.15: angle of the net force on the outer ring versus omega~"),
+        ("roller_fig2_16_20.png", "Figs. 2.16-2.20: deformed rings (magnified 10x) and ring pressures at five speeds"),
+        ("roller_fig2_21.png", "Fig. 2.21: friction torque, friction angle and radius versus omega~ at three loads"),
+        ("roller_torque_temperature.png", "Friction torque per unit length (N m/m) versus shaft speed at 30 and "
+                                          "50 C: rigid shaft, 4-term Prony bushing with a WLF shift, 50 N on 7.8 mm"),
+    )
+    about = ("The needle roller bearing of thesis Section 2.3 (9 rigid rollers between two viscoelastic rings) "
+             "over eight decades of speed with both memory models: load sharing, contact loss of rollers 3 "
+             "and 8, friction torque; and a polymer bushing at two temperatures.")
+    return _common.StageReport(text, about, tuple(checks), figures)
 
 
 if __name__ == "__main__":

@@ -30,8 +30,11 @@ def _numeric_cells(path):
 
 
 def test_foundation_figures_quick(tmp_path):
-    text = foundation_figures.main(out_dir=tmp_path, quick=True)
-    assert "trail/lead" in text
+    report = foundation_figures.main(out_dir=tmp_path, quick=True)
+    assert "trail/lead" in report.text
+    assert report.checks and all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]
+    for name, _ in report.figures:
+        assert (tmp_path / name).exists(), name
     for name in ("fig2_3_A4_hole.png", "figA6_diametral.png", "ring_profiles_u_theta.png",
                  "material_curves.png"):
         assert (tmp_path / name).stat().st_size > 10_000
