@@ -41,7 +41,7 @@ def test_foundation_figures_quick(tmp_path):
     for name in ("ring_profiles.csv", "material_curves.csv", "material_spectra.csv"):
         _, values = _numeric_cells(tmp_path / name)
         assert values and all(math.isfinite(v) for v in values), name
-    assert (tmp_path / "foundation_summary.txt").read_text() == text
+    assert (tmp_path / "foundation_summary.txt").read_text() == report.text
     assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
 
 
