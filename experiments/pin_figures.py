@@ -219,30 +219,35 @@ def viscoelastic(out, quick):
                  "pin (orange); bottom: pressure. Solid: periodic memory, dashed: thesis memory", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_7.png")
 
+    def snapshots(draw, xlim, ylim):
+        """One panel per snapshot speed: ``draw(ax, i)`` with i the index of that speed."""
+        fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
+        for ax, w in zip(axes, SNAP_SPEEDS):
+            i = _snap_index(speeds, w)
+            draw(ax, i)
+            ax.set(aspect="equal", xlim=xlim, ylim=ylim, title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
+        axes[0].set_ylabel(r"$y/R$")
+        axes[0].legend(fontsize=7, loc="lower left")
+        return fig
+
     # Fig. 2.8: magnified contour (K = 10), whole hole
     K = 10.0
-    fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
-    for j, w in enumerate(SNAP_SPEEDS):
-        i = _snap_index(speeds, w)
-        ax = axes[j]
+
+    def contours(ax, i):
         ax.plot(np.cos(tc), np.sin(tc), "k--", lw=0.8)
         for mem in MEMORIES:
             rr = 1 + K * closed(res[mem].displacement[i]) / R
             ax.plot(rr * np.cos(tc), rr * np.sin(tc), color=COLORS[mem], ls="-" if mem == "periodic" else "--",
                     lw=1.0, label=mem)
-        ax.set(aspect="equal", xlim=(-1.6, 1.6), ylim=(-1.6, 1.6), title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
-        if j == 0:
-            ax.set_ylabel(r"$y/R$")
-            ax.legend(fontsize=7, loc="lower left")
-    fig.suptitle(f"Fig. 2.8: deformed hole contour magnified K = {K:g} (u_r positive outward)", fontsize=9)
+    fig = snapshots(contours, (-1.6, 1.6), (-1.6, 1.6))
+    fig.suptitle(f"Fig. 2.8: deformed hole contour magnified K = {K:g} (u_r positive outward, black dashed: "
+                 f"undeformed); {CASE}", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_8.png")
 
     # Fig. 2.9: pressure drawn normal to the hole, net force on the plane
     scale = 0.25 / max(res[m_].pressure.max() for m_ in MEMORIES)
-    fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
-    for j, w in enumerate(SNAP_SPEEDS):
-        i = _snap_index(speeds, w)
-        ax = axes[j]
+
+    def pressures(ax, i):
         ax.plot(np.cos(tc), np.sin(tc), "k-", lw=0.8)
         for mem in MEMORIES:
             r, ls = res[mem], "-" if mem == "periodic" else "--"
@@ -251,12 +256,9 @@ def viscoelastic(out, quick):
             Fx, Fy = r.force[i]
             ax.annotate("", xy=(0.8 * Fx / load, 0.8 * Fy / load), xytext=(0, 0),
                         arrowprops=dict(arrowstyle="->", color=COLORS[mem], ls=ls))
-        ax.set(aspect="equal", xlim=(-1.1, 1.4), ylim=(-1.2, 1.2), title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
-        if j == 0:
-            ax.set_ylabel(r"$y/R$")
-            ax.legend(fontsize=7, loc="lower left")
+    fig = snapshots(pressures, (-1.1, 1.4), (-1.2, 1.2))
     fig.suptitle("Fig. 2.9: pressure on the hole (radial offset) and net force F_tot on the plane "
-                 "(arrows, |F| -> 0.8)", fontsize=9)
+                 f"(arrows, |F| -> 0.8); {CASE}", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_9.png")
 
     # Fig. 2.10

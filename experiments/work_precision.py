@@ -66,6 +66,12 @@ def _fit_order(ns, errs):
     return float(-np.polyfit(x, y, 1)[0])
 
 
+
+def _md_table(title, header, rows):
+    """Lines of a Markdown section: a blank line, the title, a table of ``rows``."""
+    return (["", title, "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+            + ["| " + " | ".join(str(c) for c in row) + " |" for row in rows])
+
 def _rel(a, b):
     """|a/b - 1|, NaN when the reference is zero (e.g. a torque on a grid too coarse to see it)."""
     a, b = float(a), float(b)
@@ -329,22 +335,16 @@ def summary(rows):
         o1, o2 = _fit_order(ns, es), _fit_order(ns, [x["error_2"] for x in pts])
         lines.append(f"| {key[0]} | {key[1]} | {min(ns)}..{max(ns)} | {o1:.2f} (error_2: {o2:.2f}) | "
                      f"{pts[0]['error_measure']} |")
-    lines += ["", "## At the default resolution", "",
-              "| scene | series | N | error | error_2 | warm time (s) | compile (s) | iterations |",
-              "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        default = DEFAULT.get(r["scene"])
-        if (r["N"] == default and "tolerance" not in r["series"]) or (
-                r["scene"] == "dma_fit" and r["series"].startswith("density 1.0/decade, max_iter 300")):
-            lines.append(f"| {r['scene']} | {r['series']} | {r['N']} | {r['error']:.3g} | {r['error_2']:.3g} | "
-                         f"{r['warm_s']:.3g} | {r['compile_s']:.3g} | {r['iterations']} |")
-    lines += ["", "## Solver tolerance", "",
-              "| scene | series | tol | error vs tight tol | error vs finest grid | warm time (s) | iterations |",
-              "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        if "tolerance" in r["series"]:
-            lines.append(f"| {r['scene']} | {r['series']} | {r['tol']:g} | {r['error']:.3g} | {r['error_2']:.3g} | "
-                         f"{r['warm_s']:.3g} | {r['iterations']} |")
+    at_default = lambda r: (r["N"] == DEFAULT.get(r["scene"]) and "tolerance" not in r["series"]) or (
+        r["scene"] == "dma_fit" and r["series"].startswith("density 1.0/decade, max_iter 300"))
+    lines += _md_table("## At the default resolution", ["scene", "series", "N", "error", "error_2", "warm time (s)",
+                                                        "compile (s)", "iterations"],
+                       [[r["scene"], r["series"], r["N"], f"{r['error']:.3g}", f"{r['error_2']:.3g}",
+                         f"{r['warm_s']:.3g}", f"{r['compile_s']:.3g}", r["iterations"]] for r in rows if at_default(r)])
+    lines += _md_table("## Solver tolerance", ["scene", "series", "tol", "error vs tight tol", "error vs finest grid",
+                                               "warm time (s)", "iterations"],
+                       [[r["scene"], r["series"], f"{r['tol']:g}", f"{r['error']:.3g}", f"{r['error_2']:.3g}",
+                         f"{r['warm_s']:.3g}", r["iterations"]] for r in rows if "tolerance" in r["series"]])
     fits = [r for r in rows if r["scene"] == "dma_fit"]
     if fits:
         lines += ["", "## DMA fit (pyvisco data, WLF)", "",

@@ -120,33 +120,27 @@ def _clean_unit(u: str) -> str:
     return u.replace("\ufffd", "°").replace("\xba", "°").replace(" ", "")
 
 
-def _modulus_scale(unit, path, line, col):
+def _lookup_unit(table, unit, path, line, col, what, give, known):
+    """The cleaned unit and its entry in ``table``; a clear error for a missing or unknown unit."""
     u = _clean_unit(unit)
     if u == "":
-        raise DMAFormatError(path, line, f"column {col!r} has no unit (give Pa, kPa, MPa or GPa)")
-    if u not in _MODULUS_UNITS:
-        raise DMAFormatError(path, line, f"unknown modulus unit {unit.strip()!r} in column {col!r} "
-                                         f"(known: Pa, kPa, MPa, GPa, N/mm2, psi)")
-    return _MODULUS_UNITS[u]
+        raise DMAFormatError(path, line, f"column {col!r} has no unit (give {give})")
+    if u not in table:
+        raise DMAFormatError(path, line, f"unknown {what} unit {unit.strip()!r} in column {col!r} (known: {known})")
+    return u, table[u]
+
+
+def _modulus_scale(unit, path, line, col):
+    return _lookup_unit(_MODULUS_UNITS, unit, path, line, col, "modulus", "Pa, kPa, MPa or GPa",
+                        "Pa, kPa, MPa, GPa, N/mm2, psi")[1]
 
 
 def _temp_offset(unit, path, line, col):
-    u = _clean_unit(unit)
-    if u == "":
-        raise DMAFormatError(path, line, f"column {col!r} has no unit (give C or K)")
-    if u not in _TEMP_UNITS:
-        raise DMAFormatError(path, line, f"unknown temperature unit {unit.strip()!r} in column {col!r} "
-                                         f"(known: C, K)")
-    return _TEMP_UNITS[u]
+    return _lookup_unit(_TEMP_UNITS, unit, path, line, col, "temperature", "C or K", "C, K")[1]
 
 
 def _freq_kind(unit, name, path, line):
-    u = _clean_unit(unit)
-    if u == "":
-        raise DMAFormatError(path, line, f"column {name!r} has no unit (give Hz or rad/s)")
-    if u not in _FREQ_UNITS:
-        raise DMAFormatError(path, line, f"unknown frequency unit {unit.strip()!r} in column {name!r} "
-                                         f"(known: Hz, kHz, rad/s)")
+    u, _ = _lookup_unit(_FREQ_UNITS, unit, path, line, name, "frequency", "Hz or rad/s", "Hz, kHz, rad/s")
     kind, scale = _FREQ_UNITS[u]
     if u == "1/s" and _canon_name(name) == "f":
         kind = "f"  # "f [1/s]" is cycles per second
