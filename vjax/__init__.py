@@ -17,7 +17,7 @@ import jax as _jax
 from .material import Arrhenius, CreepSpectrum, Material, WLF
 from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
 from . import bodies, green
-from .bodies import Body, disc, half_plane, hole
+from .bodies import Body, disc, half_plane, hole, liner, sleeve
 from ._solve import ConvergenceError
 from .contact import ContactOptions, ContactSolution, solve_contact
 from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
@@ -27,7 +27,7 @@ from . import reference
 from .sweep import sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
-           "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole",
+           "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole", "liner", "sleeve",
            "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
            "JournalOptions", "JournalResult", "journal_bearing",

@@ -7,6 +7,16 @@ the thesis's body for that ring, or None for a rigid one).
 - :func:`hole`: a hole in an infinite plane (A.45); ``ref_length`` fixes its rigid mode 1.
 - :func:`disc`: a solid cylinder fixed at its centre (A.60); ``ref_length`` likewise.
 - :func:`half_plane`: the elastic half-plane on the ring's arc length (Chapter 3, Fig. 3.4).
+- :func:`liner`: a layer of given thickness loaded on its bore, its outer surface bonded to a
+  rigid housing (bushings, lined journal bearings, an outer race pressed into steel).
+- :func:`sleeve`: a layer loaded on its outer surface, bonded to a rigid core (polymer-sleeved
+  shafts and rollers, inner races).
+
+Which to pick: a polymer part much thicker than the contact and its clearance (thesis
+plates, solid polymer shafts) is a hole or a disc; a bushing, liner or sleeve whose
+thickness is comparable to the contact width or the radius is a liner or a sleeve. Layers
+have no log reference length: every mode, the rigid mode 1 included, is a proper elastic
+response.
 """
 from __future__ import annotations
 
@@ -18,7 +28,7 @@ from . import _checks
 from .material import Material
 from .operator import ring_operator
 
-_GREEN = {"hole": "hole", "disc": "cylinder", "half_plane": "half_plane"}
+_GREEN = {"hole": "hole", "disc": "cylinder", "half_plane": "half_plane", "liner": "liner", "sleeve": "sleeve"}
 
 
 @jax.tree_util.register_dataclass
@@ -34,7 +44,8 @@ class Body:
     def operator(self, R, n: int, omega=0.0, memory="periodic"):
         """Steady-state operator u = M sigma on the loaded surface of radius ``R`` (m), ``n``
         elements, for a pressure pattern moving at ``omega`` (rad/s) relative to the body."""
-        return ring_operator(_GREEN[self.kind], self.material, R, n, omega, memory, self.ref_length)
+        ref = 1.0 if self.ref_length is None else self.ref_length
+        return ring_operator(_GREEN[self.kind], self.material, R, n, omega, memory, ref, self.thickness)
 
     def at_temperature(self, shift, T) -> "Body":
         """The same body with its material at temperature ``T`` (C), see
@@ -65,6 +76,25 @@ def half_plane(material: Material, ref_length=1.0) -> Body:
     """An elastic half-plane of ``material`` on the ring's arc length; ``ref_length`` (m) is
     the additive constant of its log kernel (not stated in the thesis)."""
     return _with_ref_length("half_plane", material, ref_length)
+
+
+def _layer(kind, material, thickness):
+    _checks.instance("material", material, Material, "a vjax.Material")
+    _checks.positive("thickness", thickness)
+    _checks.scalar("thickness", thickness)
+    return Body(material, thickness=thickness, kind=kind)
+
+
+def liner(material: Material, thickness) -> Body:
+    """A layer of ``material``, ``thickness`` (m) thick, loaded on its bore and bonded on its
+    outer surface to a rigid housing (Michell's solution, :func:`vjax.green.mode_compliance`)."""
+    return _layer("liner", material, thickness)
+
+
+def sleeve(material: Material, thickness) -> Body:
+    """A layer of ``material``, ``thickness`` (m) thick, loaded on its outer surface and bonded
+    on its inner surface to a rigid core."""
+    return _layer("sleeve", material, thickness)
 
 
 def as_body(name: str, x, default, allowed) -> Body | None:

@@ -146,3 +146,123 @@ def element_kernel(kind, theta, alpha, R, nu, ref_length=1.0):
     hi, lo = _primitives(theta + alpha), _primitives(theta - alpha)
     return sum(wk * (h - l) for wk, h, l in zip(w, hi, lo))
 
+
+
+# ---------------------------------------------------------------------- modal compliances
+LAYERS = ("liner", "sleeve")
+LAYER_MODES = 1 << 16    # modes summed in a layer's element symbol: enough for t/R >= 1e-3
+
+
+def _basis_modes(m):
+    """int_{-pi}^{pi} b(theta) cos(m theta) dtheta of the basis [cos, beta cos, A sin, 1], m >= 0."""
+    m = jnp.asarray(m, dtype=float)
+    safe = jnp.where(m >= 2, m, 3.0)
+    hi = jnp.where(m >= 2, -jnp.pi / 2 * (1 / (safe - 1) + 1 / (safe + 1)), 0.0)
+    a_hi = jnp.where(m >= 2, jnp.pi / 2 * (1 / (safe - 1) - 1 / (safe + 1)), 0.0)
+    one = m == 1
+    zero = m == 0
+    return (jnp.where(one, jnp.pi, 0.0),
+            jnp.where(zero, -jnp.pi, jnp.where(one, -jnp.pi / 4, hi)),
+            jnp.where(zero, -jnp.pi, jnp.where(one, -jnp.pi / 4, a_hi)),
+            jnp.where(zero, 2 * jnp.pi, 0.0))
+
+
+def _michell_modes(kind, m, nu, tau):
+    """c_m of a layer of thickness ratio tau (Michell's solution, plane strain, E = 1, R = 1).
+
+    Liner: loaded at rho = 1 (sigma_rr = -cos m theta, sigma_rtheta = 0), bonded at 1 + tau;
+    sleeve: loaded at rho = 1, bonded at 1 - tau. Mode m >= 1 uses the four power solutions
+    r^(m+1), r^(m-1), r^(1-m), r^(-m-1) (for m = 1 the third is replaced by the log
+    solution), each scaled to at most 1 on the layer; m = 0 is Lame's u = A r + B / r.
+    """
+    kap = 3.0 - 4.0 * nu
+    mu = 1.0 / (2.0 * (1.0 + nu))
+    rb = 1.0 + tau if kind == "liner" else 1.0 - tau
+    lo, hi = (1.0, rb) if kind == "liner" else (rb, 1.0)
+    n = jnp.maximum(jnp.asarray(m, dtype=float), 1.0)
+    first = n == 1
+    n3 = jnp.where(first, 3.0, n)                     # keeps the unused m = 1 branch finite
+
+    def power(s, b, srr, srt, rho):
+        ref = jnp.where(s > 0, hi, lo)
+        f = jnp.exp(s * jnp.log(rho / ref))
+        return jnp.stack([f, b * f, mu * srr * f / rho, mu * srt * f / rho], -1)
+
+    def columns(rho):
+        c1 = power(n + 1, -(n + kap + 1) / (n - kap + 1), 2 * (n - 2) * (n + 1) / (n + 1 - kap),
+                   -2 * n * (n + 1) / (n + 1 - kap), rho)
+        c2 = power(n - 1, -1.0, 2 * (n - 1), -2 * (n - 1), rho)
+        c3 = power(1 - n3, (n3 - kap - 1) / (n3 + kap - 1), -2 * (n3 - 1) * (n3 + 2) / (kap + n3 - 1),
+                   -2 * n3 * (n3 - 1) / (kap + n3 - 1), rho)
+        L = jnp.log(rho) * jnp.ones_like(n)
+        c3_log = jnp.stack([L, -(kap * L + 1) / kap, mu * (kap + 3) / (kap * rho) * jnp.ones_like(n),
+                            mu * (1 - kap) / (kap * rho) * jnp.ones_like(n)], -1)
+        c3 = jnp.where(first[..., None], c3_log, c3)
+        c4 = power(-n - 1, 1.0, -2 * (n + 1), -2 * (n + 1), rho)
+        return jnp.stack([c1, c2, c3, c4], -1)           # (..., [u_r, u_t, s_rr, s_rt], basis)
+
+    loaded, bonded = columns(1.0), columns(rb)
+    A = jnp.concatenate([loaded[..., 2:, :], bonded[..., :2, :]], axis=-2)
+    rhs = jnp.broadcast_to(jnp.array([-1.0, 0.0, 0.0, 0.0], dtype=A.dtype), A.shape[:-1])
+    coef = jnp.linalg.solve(A, rhs[..., None])[..., 0]
+    u = jnp.sum(loaded[..., 0, :] * coef, -1)
+    c_m = u if kind == "liner" else -u                   # into the body
+    c_0 = (kap - 1) * jnp.abs(rb**2 - 1) / (2 * mu * (2 + (kap - 1) * rb**2))
+    return jnp.where(jnp.asarray(m) == 0, c_0, c_m)
+
+
+def mode_compliance(kind: str, modes, nu, thickness_ratio=None, ref_length_ratio=None):
+    """Dimensionless modal compliances c_n (plane strain) of the loaded surface of a body.
+
+    A pressure cos(n theta) (Pa) on the loaded surface of radius R gives the radial
+    displacement into the body c_n (R / E) cos(n theta), E the Young modulus:
+
+    - "hole": hole in an infinite plane (A.39); n >= 2: (1+nu)/2 [kappa/(n-1) + 1/(n+1)],
+      n = 0: 1 + nu, n = 1 depends on ``ref_length_ratio`` = ref_length / R (default 1/R
+      for R = 1 m, i.e. pass it);
+    - "disc": solid cylinder fixed at its centre (A.56 with A' = -A): n >= 2:
+      (1+nu)/2 [1/(n-1) + kappa/(n+1)], n = 0: (1+nu)(1-2nu);
+    - "liner": a layer of thickness t = ``thickness_ratio`` R loaded on its bore, its outer
+      surface bonded to a rigid housing;
+    - "sleeve": a layer loaded on its outer surface, bonded on its inner surface (radius
+      R - t) to a rigid core.
+
+    Liners and sleeves follow from Michell's general solution with the bonded and loaded
+    boundary conditions, one 4 x 4 solve per mode (vectorized, differentiable in nu and the
+    thickness). Thick liners tend to the hole, thin layers to the oedometric
+    t (1+nu)(1-2nu) / ((1-nu) E) (nu < 0.5) and, incompressible, to c_n ~ n^2 (t/R)^3.
+    """
+    modes = jnp.abs(jnp.asarray(modes))
+    if kind in LAYERS:
+        if thickness_ratio is None:
+            raise ValueError(f"a {kind} needs thickness_ratio = t / R")
+        return _michell_modes(kind, modes, nu, thickness_ratio)
+    if kind not in ("hole", "disc"):
+        raise ValueError(f"kind must be one of hole, disc, liner, sleeve, got {kind!r}")
+    ratio = 1.0 if ref_length_ratio is None else ref_length_ratio
+    w = _coefficients("hole" if kind == "hole" else "cylinder", 1.0, nu, ratio)
+    return sum(wk * g for wk, g in zip(w, _basis_modes(modes)))
+
+
+def layer_element_symbol(kind: str, n: int, R, nu, thickness):
+    """Element symbol (real FFT of the first column of the element matrix, modes 0..n/2)
+    of a liner or sleeve of ``thickness`` (m) loaded on radius ``R`` (m).
+
+    The element operator is the continuous one integrated over the elements: mode k collects
+    every m = k (mod n) with the element factor sinc(m pi / n). The sum converges slowly
+    alone (c_m ~ 1/m), so it is written as the exact closed-form symbol of the unbounded body
+    (a hole for a liner, a disc for a sleeve, reference length R) plus the aliased sum of the
+    difference, which decays like exp(-2 m t / R): ``LAYER_MODES`` terms suffice for
+    t / R >= 1e-3.
+    """
+    base = "hole" if kind == "liner" else "cylinder"
+    theta, alpha = jnp.arange(n) * 2.0 * jnp.pi / n, jnp.pi / n
+    exact = jnp.fft.rfft(element_kernel(base, theta, alpha, R, nu, R)).real
+    m = jnp.arange(LAYER_MODES + 1, dtype=float)
+    diff = (mode_compliance(kind, m, nu, thickness_ratio=thickness / R)
+            - mode_compliance("hole" if kind == "liner" else "disc", m, nu, ref_length_ratio=1.0))
+    weight = diff * jnp.sinc(m / n)                      # sin(m alpha) / (m alpha)
+    signed = jnp.concatenate([weight, weight[1:]])       # m >= 0 and m <= -1
+    bins = jnp.concatenate([jnp.arange(LAYER_MODES + 1), -jnp.arange(1, LAYER_MODES + 1)]) % n
+    folded = jnp.zeros(n, weight.dtype).at[bins].add(signed)
+    return exact + folded[: n // 2 + 1]

@@ -100,8 +100,8 @@ from . import _checks, _scene, _solve, reference, reynolds
 from .bodies import as_body, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
-HOUSINGS = ("hole", "half_plane")
-SHAFTS = ("disc", "half_plane")
+HOUSINGS = ("hole", "liner", "half_plane")
+SHAFTS = ("disc", "sleeve", "half_plane")
 NESTED_MIN_N = 512  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
 
 

@@ -81,11 +81,15 @@ def grid(n: int):
     return 2.0 * jnp.pi * jnp.arange(n) / n, jnp.pi / n
 
 
-def element_symbol(kind: str, n: int, R, nu, ref_length=1.0):
+def element_symbol(kind: str, n: int, R, nu, ref_length=1.0, thickness=None):
     """Real FFT of the first column L(theta_i) of the circulant element matrix (modes 0..n/2).
 
     The kernels are even, so the symbol is real. Multiply by R * Jeff_n to get the operator.
+    "liner" and "sleeve" (bonded layers of ``thickness`` m) are built from their modal
+    compliances (:func:`vjax.green.layer_element_symbol`).
     """
+    if kind in green.LAYERS:
+        return green.layer_element_symbol(kind, n, R, nu, thickness)
     theta, alpha = grid(n)
     return jnp.fft.rfft(green.element_kernel(kind, theta, alpha, R, nu, ref_length)).real
 
@@ -118,18 +122,19 @@ class RingOperator:
 
 
 def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="periodic",
-                  ref_length=1.0) -> RingOperator:
+                  ref_length=1.0, thickness=None) -> RingOperator:
     """Steady-state operator of a ring of radius ``R`` (m) on ``n`` elements.
 
     Args:
-      kind: Green's function, "hole", "cylinder", "diametral" or "half_plane" (see
-        :mod:`vjax.green`).
+      kind: Green's function, "hole", "cylinder", "diametral", "half_plane", or a bonded
+        layer "liner" / "sleeve" (see :mod:`vjax.green`).
       material: the body's :class:`~vjax.Material`.
       R: ring radius (m).
       n: number of elements (static).
       omega: angular velocity of the pressure pattern relative to the body (rad/s).
       memory: "periodic", "thesis" or a number of revolutions (see module docstring).
       ref_length: reference length of the log terms (m), default 1 m as the thesis.
+      thickness: a layer's thickness (m), 0 < thickness (< R for a sleeve); layers only.
 
     >>> import jax.numpy as jnp
     >>> op = ring_operator("hole", Material.elastic(1e6, 0.3), R=0.05, n=64)
@@ -137,7 +142,15 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     >>> round(float(u[0]) / (1e3 * 0.05 * 1.3 / 1e6), 6)
     1.0
     """
-    green._check_kind(kind)
+    if kind in green.LAYERS:
+        _checks.positive("thickness", thickness)
+        _checks.scalar("thickness", thickness)
+        t, r = _checks.values("thickness", thickness), _checks.values("R", R)
+        if t is not None and r is not None and not (t >= 1e-3 * r and (kind == "liner" or t < r)):
+            raise ValueError(f"thickness must be at least 1e-3 R{'' if kind == 'liner' else ' and below R'} for a "
+                             f"{kind}, got thickness={thickness!r} with R={R!r}")
+    else:
+        green._check_kind(kind)
     if not isinstance(n, (int, np.integer)) or n < 4:
         raise ValueError(f"n (number of elements) must be an integer >= 4, got {n!r}")
     _checks.instance("material", material, Material, "a vjax.Material")
@@ -147,14 +160,15 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     for name, val in (("R", R), ("ref_length", ref_length), ("omega", omega)):
         _checks.scalar(name, val)
     memory_revolutions(memory)
-    return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length), int(n))
+    return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length, thickness), int(n))
 
 
 @partial(jax.jit, static_argnums=(0, 3, 5))
-def _symbol(kind, material, R, n, omega, memory, ref_length):
+def _symbol(kind, material, R, n, omega, memory, ref_length, thickness):
     """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, memory, material shape)."""
     modes = jnp.arange(n // 2 + 1, dtype=jnp.result_type(float))
-    return R * element_symbol(kind, n, R, material.nu, ref_length) * effective_compliance(material, modes, omega, memory)
+    return R * element_symbol(kind, n, R, material.nu, ref_length, thickness) * effective_compliance(
+        material, modes, omega, memory)
 
 
 def spectral_derivative(u):

@@ -32,7 +32,7 @@ from .bodies import Body, as_body, hole
 from .contact import ContactOptions, solve_contact, solve_with_fallback
 from .operator import grid, memory_revolutions, spectral_derivative
 
-HOUSINGS = ("hole",)
+HOUSINGS = ("hole", "liner")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -72,8 +72,8 @@ from .bodies import as_body, disc, hole
 from .contact import ContactOptions
 from .operator import grid, memory_revolutions, spectral_derivative
 
-HOUSINGS = ("hole",)
-SHAFTS = ("disc",)
+HOUSINGS = ("hole", "liner")
+SHAFTS = ("disc", "sleeve")
 
 
 @dataclasses.dataclass(frozen=True)
