@@ -23,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 
 import jax
+import numpy as np
 
 from . import _checks
 from .material import Material
@@ -111,3 +112,17 @@ def as_body(name: str, x, default, allowed) -> Body | None:
         return x
     raise ValueError(f"{name} must be a vjax body ({', '.join(allowed)}), a vjax.Material or None (rigid), "
                      f"got {type(x).__name__}")
+
+
+def check_fits(name: str, body: Body | None, R) -> None:
+    """A layer on a ring of radius ``R`` (m) must be at least 1e-3 R thick (the modal sum of
+    its operator resolves thinner layers poorly), and a sleeve thinner than R (it needs a core)."""
+    if body is None or body.kind not in ("liner", "sleeve"):
+        return
+    t, r = _checks.values("thickness", body.thickness), _checks.values("R", R)
+    if t is None or r is None:
+        return
+    if not np.all(t >= 1e-3 * r) or (body.kind == "sleeve" and not np.all(t < r)):
+        raise ValueError(f"{name}: a {body.kind}'s thickness must be at least 1e-3 times its radius"
+                         f"{' and below it' if body.kind == 'sleeve' else ''}, got thickness={float(np.max(t)):.4g} m "
+                         f"on radius {float(np.max(r)):.4g} m")

@@ -97,7 +97,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _scene, _solve, reference, reynolds
-from .bodies import as_body, disc, hole
+from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
 HOUSINGS = ("hole", "liner", "half_plane")
@@ -409,8 +409,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       load: external force on the journal (N/m): a vector (Fx, Fy), or a magnitude with
         ``load_angle`` (rad, default -pi/2: downward).
       housing, shaft: bodies of the bearing and the journal: a :class:`~vjax.Material` (hole,
-        resp. disc, with ``ref_length`` 1 m), a body (housing: hole or half_plane; shaft: disc
-        or half_plane), or None (rigid, the default).
+        resp. disc, with ``ref_length`` 1 m), a body (housing: hole, liner or half_plane; shaft:
+        disc, sleeve or half_plane), or None (rigid, the default).
       omega_shaft, omega_housing: angular velocities of journal and bearing (rad/s, CCW > 0).
         Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       memory: "periodic", "thesis" or a number of revolutions (see :mod:`vjax.operator`).
@@ -448,6 +448,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     sa = _checks.values("supply_angle", supply_angle)
     if sa is None:
         raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
+    check_fits("housing", housing, R)
+    check_fits("shaft", shaft, R - radial_clearance)
     housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
     n = options.n
     dtype = jnp.result_type(float)

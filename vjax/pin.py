@@ -28,7 +28,7 @@ import jax
 import jax.numpy as jnp
 
 from . import _checks, _scene, _solve
-from .bodies import Body, as_body, hole
+from .bodies import Body, as_body, check_fits, hole
 from .contact import ContactOptions, solve_contact, solve_with_fallback
 from .operator import grid, memory_revolutions, spectral_derivative
 
@@ -116,7 +116,8 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
 
     Args:
       housing: the housing's body: a :class:`~vjax.Material` (a hole in an infinite plane,
-        :func:`~vjax.hole` with ``ref_length`` 1 m) or a body of kind "hole".
+        :func:`~vjax.hole` with ``ref_length`` 1 m), a hole, or a :func:`~vjax.liner` (a
+        bushing bonded into a rigid holder).
       R: bore radius (m). radial_clearance: c = R - R_pin (m), 0 < c < R.
       load: force on the pin (N/m), > 0, along ``load_angle`` (rad from the x axis).
       omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
@@ -155,6 +156,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
         raise ValueError(f"radial_clearance must be smaller than the bore radius R, got "
                          f"radial_clearance={radial_clearance!r} >= R={R!r}")
     memory_revolutions(memory)
+    check_fits("housing", housing, R)
     (housing,) = _scene.at_temperature(temperature, shift, housing)
     start = None
     if initial is not None:

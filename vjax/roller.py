@@ -68,7 +68,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _roller_balance as balance, _scene, _solve
-from .bodies import as_body, disc, hole
+from .bodies import as_body, check_fits, disc, hole
 from .contact import ContactOptions
 from .operator import grid, memory_revolutions, spectral_derivative
 
@@ -254,7 +254,8 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
     Args:
       housing, shaft: bodies of the outer ring and the inner ring: a :class:`~vjax.Material`
         (outer: a hole in an infinite plane, A.45; inner: a disc fixed at its centre, A.60),
-        a body of those kinds, or ``None`` for a rigid ring (not both).
+        a body (housing: hole or :func:`~vjax.liner`; shaft: disc or :func:`~vjax.sleeve`), or
+        ``None`` for a rigid ring (not both).
       R_outer, R_inner: raceway radii R_O > R_I (m). roller_diameter: D (m).
       n_rollers: Z (static), equally spaced; they must fit on the pitch circle.
       load: radial load on the inner ring (N/m), > 0, along ``load_angle`` (rad).
@@ -299,6 +300,8 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
     memory_revolutions(memory)
     Z = int(n_rollers)
     _check_fit(R_outer, R_inner, roller_diameter, diametral_clearance, Z)
+    check_fits("housing", housing, R_outer)
+    check_fits("shaft", shaft, R_inner)
     housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
 
     Pd = 2 * (R_outer - R_inner - roller_diameter) if diametral_clearance is None else diametral_clearance

@@ -1,0 +1,159 @@
+"""Bonded layers (liner, sleeve): modal compliances against independent limits, the element
+operator against the aliased modal sum, and the scenes built on them."""
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+import vjax
+from vjax import Material, PinOptions, green
+
+NUS = (0.3, 0.45, 0.5)
+
+
+def lame_bonded(kind, nu, tau):
+    """Uniform pressure 1 on a ring bonded on its other surface, from Lame's u = A r + B/r
+    with the Lame constants (E = 1, loaded radius 1): the displacement into the body."""
+    lam, mu = nu / ((1 + nu) * (1 - 2 * nu)) if nu < 0.5 else np.inf, 1 / (2 * (1 + nu))
+    b = 1 + tau if kind == "liner" else 1 - tau
+    if not np.isfinite(lam):
+        return 0.0                     # incompressible: no change of area without moving the bond
+    # sigma_rr(1) = 2 (lam + mu) A - 2 mu B = -1, u(b) = A b + B / b = 0
+    A = -1.0 / (2 * (lam + mu) + 2 * mu * b * b)
+    return abs(A * (1 - b * b))
+
+
+@pytest.mark.parametrize("nu", NUS)
+@pytest.mark.parametrize("kind", ["liner", "sleeve"])
+def test_mode_zero_is_lame_with_a_bonded_surface(kind, nu):
+    for tau in (1e-3, 1e-2, 0.1, 0.5, 0.9 if kind == "sleeve" else 2.0):
+        c0 = float(green.mode_compliance(kind, 0, nu, thickness_ratio=tau))
+        assert c0 == pytest.approx(lame_bonded(kind, nu, tau), rel=1e-10, abs=1e-15)
+
+
+@pytest.mark.parametrize("nu", NUS)
+def test_thick_liner_is_a_hole_and_full_sleeve_a_disc(nu):
+    n = jnp.arange(2, 40)
+    hole = green.mode_compliance("hole", n, nu)
+    assert np.allclose(green.mode_compliance("liner", n, nu, thickness_ratio=1e3), hole, rtol=1e-5)
+    disc = green.mode_compliance("disc", n, nu)
+    assert np.allclose(green.mode_compliance("sleeve", n, nu, thickness_ratio=1 - 1e-6), disc, rtol=1e-5)
+    # and both layers stiffen as they thin
+    for kind in ("liner", "sleeve"):
+        c = [float(green.mode_compliance(kind, 3, nu, thickness_ratio=t)) for t in (1e-3, 1e-2, 1e-1, 0.5)]
+        assert np.all(np.diff(c) > 0)
+
+
+@pytest.mark.parametrize("nu", [0.3, 0.45])
+@pytest.mark.parametrize("kind", ["liner", "sleeve"])
+def test_thin_layer_is_oedometric(kind, nu):
+    """t << R/n: every mode sees the constrained modulus, c = (t/R)(1+nu)(1-2nu)/(1-nu)."""
+    tau = 1e-3
+    c = np.asarray(green.mode_compliance(kind, jnp.arange(0, 6), nu, thickness_ratio=tau))
+    assert np.allclose(c, tau * (1 + nu) * (1 - 2 * nu) / (1 - nu), rtol=5e-3)
+
+
+@pytest.mark.parametrize("kind", ["liner", "sleeve"])
+def test_thin_incompressible_layer_scales_with_the_cube_of_its_thickness(kind):
+    """nu = 0.5: no volume change, the layer can only squeeze sideways: c_n ~ n^2 (t/R)^3."""
+    n = jnp.arange(1, 6)
+    c1 = np.asarray(green.mode_compliance(kind, n, 0.5, thickness_ratio=1e-3))
+    c2 = np.asarray(green.mode_compliance(kind, n, 0.5, thickness_ratio=2e-3))
+    assert np.allclose(c2 / c1, 8.0, rtol=1e-2)
+    assert np.allclose(c1 / np.asarray(n) ** 2, c1[0], rtol=1e-2)
+    # far stiffer than the compressible oedometric layer of the same thickness
+    assert np.all(c1 < 1e-4 * float(green.mode_compliance(kind, 1, 0.45, thickness_ratio=1e-3)))
+
+
+def test_element_symbol_is_the_aliased_modal_sum():
+    """The piecewise-constant operator = the continuous one integrated over the elements:
+    sum over m = k (mod n) of c_m sinc(m/n), here summed directly over 2^20 modes."""
+    n, R, t, nu = 32, 0.006, 0.002, 0.3
+    sym = np.asarray(vjax.element_symbol("liner", n, R, nu, thickness=t))
+    m = np.arange(0, 1 << 20)
+    c = np.asarray(green.mode_compliance("liner", m, nu, thickness_ratio=t / R))
+    w = c * np.sinc(m / n)
+    full = np.zeros(n)
+    np.add.at(full, m % n, w)
+    np.add.at(full, (-m[1:]) % n, w[1:])
+    assert np.allclose(sym, full[: n // 2 + 1], rtol=2e-6)
+
+
+def test_gradient_with_respect_to_thickness_and_nu():
+    f = lambda t, nu: green.mode_compliance("liner", 4, nu, thickness_ratio=t)
+    g = jax.grad(f, argnums=(0, 1))(0.1, 0.3)
+    for i, (x, h) in enumerate(((0.1, 1e-6), (0.3, 1e-6))):
+        args = [0.1, 0.3]
+        up, dn = list(args), list(args)
+        up[i] += h
+        dn[i] -= h
+        assert float(g[i]) == pytest.approx((float(f(*up)) - float(f(*dn))) / (2 * h), rel=1e-6)
+
+
+# ---------------------------------------------------------------------- scenes
+SLS = Material.sls(1e6, 1e7, 0.01, 0.5)
+R, C, LOAD, N = 0.08, 0.005, 2800.0, 256
+
+
+def _pin(omega_tilde, thickness=0.01, material=SLS, n=N):
+    W = omega_tilde / 0.01
+    return vjax.pin_in_hole(vjax.liner(material, thickness), R, C, LOAD,
+                            omega_shaft=vjax.pin_shaft_speed(W, R, C), options=PinOptions(n=n))
+
+
+@pytest.mark.parametrize("omega_tilde", [1e-9, 1e9])
+def test_pin_in_a_liner_elastic_limits(omega_tilde):
+    r = _pin(omega_tilde)
+    p = np.asarray(r.pressure)
+    mirror = np.roll(p[::-1], 1)
+    assert np.max(np.abs(p - mirror)) < 1e-6 * p.max()
+    assert abs(float(r.torque)) < 1e-8 * LOAD * R
+
+
+def test_pin_in_a_liner_torque_times_speed_is_the_modal_dissipation():
+    omega = 0.3 / 0.01
+    r = _pin(0.3)
+    sig = np.fft.rfft(np.asarray(r.pressure))
+    k = np.arange(N // 2)
+    L = np.asarray(vjax.element_symbol("liner", N, R, 0.5, thickness=0.01))[k]
+    loss = -np.imag(np.asarray(SLS.compliance(k * omega)))
+    dissipation = omega * R**2 * 2 * np.pi / N**2 * 2 * np.sum(k * L * loss * np.abs(sig[k]) ** 2)
+    assert dissipation > 0
+    assert np.isclose(-omega * float(r.torque), dissipation, rtol=1e-9)
+
+
+def test_pin_in_a_liner_gradient_vs_finite_differences_and_vmap():
+    torque = lambda t: _pin(0.3, thickness=t).torque
+    g = float(jax.grad(torque)(0.01))
+    h = 1e-6
+    assert g == pytest.approx((float(torque(0.01 + h)) - float(torque(0.01 - h))) / (2 * h), rel=1e-5)
+    many = jax.jit(jax.vmap(torque))(jnp.array([0.005, 0.01, 0.02]))
+    assert np.all(np.isfinite(np.asarray(many))) and float(many[0]) != float(many[2])
+
+
+def test_thin_bushing_tends_to_a_winkler_foundation():
+    """A thin compressible liner is a bed of independent springs (Winkler), u = p t (1+nu)(1-2nu) /
+    ((1-nu) E): inside the contact the pressure is the spring stiffness times the displacement."""
+    m = Material.elastic(1e8, 0.3)
+    t = 1e-4
+    r = vjax.pin_in_hole(vjax.liner(m, t), R, 1e-4, 2e4, options=PinOptions(n=2048))
+    k = (1 - 0.3) * 1e8 / (t * (1 + 0.3) * (1 - 2 * 0.3))          # spring stiffness (Pa/m)
+    u = np.asarray(r.displacement)
+    p = np.asarray(r.pressure)
+    inside = p > 0.2 * p.max()                   # away from the edges, where the layer shears
+    assert np.allclose(p[inside], k * u[inside], rtol=0.03)
+
+
+def test_a_liner_has_no_reference_length_and_checks_its_input():
+    """A hole's pin offset moves with the log reference length (its rigid mode 1); a bonded
+    liner has none: the pin sinks only by the layer's compression (tens of micrometres)."""
+    hole = [vjax.pin_in_hole(vjax.hole(SLS, ref_length=l), R, C, LOAD, options=PinOptions(n=N)).pin_offset
+            for l in (1.0, 10.0)]
+    assert abs(float(hole[1] - hole[0])) > 1e-4
+    assert 0 < float(_pin(0.3).pin_offset) - C < 1e-4
+    with pytest.raises(ValueError, match="thickness"):
+        vjax.liner(SLS, -1.0)
+    with pytest.raises(ValueError, match="thickness"):
+        vjax.pin_in_hole(vjax.liner(SLS, 1e-6), R, C, LOAD, options=PinOptions(n=64))
+    with pytest.raises(ValueError, match="housing must be one of the bodies hole, liner"):
+        vjax.pin_in_hole(vjax.sleeve(SLS, 0.01), R, C, LOAD, options=PinOptions(n=64))
