@@ -90,6 +90,67 @@ def test_gradient_with_respect_to_thickness_and_nu():
         assert float(g[i]) == pytest.approx((float(f(*up)) - float(f(*dn))) / (2 * h), rel=1e-6)
 
 
+# ---------------------------------------------------------------------- finite elements
+def _annulus(a, b, nr, nt):
+    """A structured triangulation of the annulus a < r < b (nt points around, periodic)."""
+    from skfem import MeshTri
+    r = np.linspace(a, b, nr + 1)
+    th = 2 * np.pi * np.arange(nt) / nt
+    Rg, Tg = np.meshgrid(r, th, indexing="ij")
+    points = np.stack([(Rg * np.cos(Tg)).ravel(), (Rg * np.sin(Tg)).ravel()])
+    idx = lambda i, j: i * nt + (j % nt)
+    tri = [[idx(i, j), idx(i, j + 1), idx(i + 1, j + 1)] for i in range(nr) for j in range(nt)]
+    tri += [[idx(i, j), idx(i + 1, j + 1), idx(i + 1, j)] for i in range(nr) for j in range(nt)]
+    return MeshTri(points, np.array(tri).T)
+
+
+def _fem_surface_displacement(kind, R, t, nu, patch, nr=10, nt=960):
+    """Plane-strain P2 finite elements (scikit-fem) of the layer, E = 1: the radial
+    displacement into the body at the loaded surface's nodes, by angle."""
+    from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, FacetBasis, LinearForm, asm, condense, solve
+    from skfem.helpers import ddot, dot, sym_grad, trace
+    a, b = (R, R + t) if kind == "liner" else (R - t, R)
+    mesh = _annulus(a, b, nr, nt)
+    element = ElementVector(ElementTriP2())
+    basis = Basis(mesh, element)
+    lam, mu = nu / ((1 + nu) * (1 - 2 * nu)), 1 / (2 * (1 + nu))
+
+    @BilinearForm
+    def stiffness(u, v, w):
+        return 2 * mu * ddot(sym_grad(u), sym_grad(v)) + lam * trace(sym_grad(u)) * trace(sym_grad(v))
+
+    @LinearForm
+    def pressure(v, w):              # traction -p n on the loaded surface
+        return -patch(np.arctan2(w.x[1], w.x[0])) * dot(w.n, v)
+
+    on = lambda radius: (lambda x: np.abs(np.hypot(x[0], x[1]) - radius) < 1e-3 * t)
+    f = asm(pressure, FacetBasis(mesh, element, facets=mesh.facets_satisfying(on(R))))
+    fixed = basis.get_dofs(mesh.facets_satisfying(on(b if kind == "liner" else a))).all()
+    u = solve(*condense(asm(stiffness, basis), f, D=fixed))
+    nodes = np.nonzero(on(R)(mesh.p))[0]
+    th = np.arctan2(mesh.p[1, nodes], mesh.p[0, nodes])
+    ur = u[basis.nodal_dofs[0, nodes]] * np.cos(th) + u[basis.nodal_dofs[1, nodes]] * np.sin(th)
+    order = np.argsort(np.mod(th, 2 * np.pi))
+    return np.mod(th, 2 * np.pi)[order], (ur if kind == "liner" else -ur)[order]
+
+
+@pytest.mark.parametrize("nu", [0.3, 0.45])
+@pytest.mark.parametrize("kind", ["liner", "sleeve"])
+def test_layer_operator_matches_finite_elements(kind, nu):
+    """Bonded liner R = 6 mm, t = 2 mm, and sleeve R = 6 mm on a 4 mm core, under a cos^2
+    patch pressure 0.6 rad wide: vjax's surface displacement within 0.5% of its peak."""
+    R, t, width = 6e-3, 2e-3, 0.3
+    patch = lambda th: np.where(np.abs(th) < width, np.cos(np.pi * th / (2 * width)) ** 2, 0.0)
+    th_fem, u_fem = _fem_surface_displacement(kind, R, t, nu, patch)
+    n = 480
+    theta = 2 * np.pi * np.arange(n) / n
+    sub = theta[:, None] + ((np.arange(32) + 0.5) / 32 - 0.5)[None, :] * (2 * np.pi / n)
+    p = patch(np.angle(np.exp(1j * sub))).mean(axis=1)              # element means
+    u = np.asarray(vjax.ring_operator(kind, Material.elastic(1.0, nu), R, n, thickness=t)(jnp.asarray(p)))
+    u_ref = np.interp(theta, th_fem, u_fem, period=2 * np.pi)
+    assert np.max(np.abs(u - u_ref)) <= 5e-3 * np.max(np.abs(u_ref))
+
+
 # ---------------------------------------------------------------------- scenes
 SLS = Material.sls(1e6, 1e7, 0.01, 0.5)
 R, C, LOAD, N = 0.08, 0.005, 2800.0, 256
@@ -157,3 +218,30 @@ def test_a_liner_has_no_reference_length_and_checks_its_input():
         vjax.pin_in_hole(vjax.liner(SLS, 1e-6), R, C, LOAD, options=PinOptions(n=64))
     with pytest.raises(ValueError, match="housing must be one of the bodies hole, liner"):
         vjax.pin_in_hole(vjax.sleeve(SLS, 0.01), R, C, LOAD, options=PinOptions(n=64))
+
+
+def test_roller_with_a_bushing_and_a_sleeve():
+    """The thesis's test-bearing layout (a bushing pressed into a rigid holder) with a sleeved
+    inner ring: elastic at low speed (symmetric loads, no torque), and at a finite speed each
+    ring's torque x patch speed is its modal dissipation (to the lever-arm factor max|u|/R)."""
+    RO, RI, D, Z, n = 6e-3, 4e-3, 2e-3, 9, 256
+    run = lambda w: vjax.roller_bearing(vjax.liner(SLS, 2e-3), vjax.sleeve(SLS, 1e-3), RO, RI, D, Z, 39.0,
+                                        omega_shaft=w, options=vjax.RollerOptions(n=n))
+    slow = run(1e-8)
+    loads = np.asarray(slow.roller_loads[0])
+    assert np.allclose(loads, loads[(-np.arange(Z)) % Z], rtol=0, atol=1e-6 * loads.max())
+    assert abs(float(slow.torque)) < 1e-6 * 39.0 * RO
+    r = run(0.4 / 0.01 * (RI + RO) / RI)
+    _, w_outer, w_inner = (float(v) for v in (r.cage_speed, *r.patch_speed))
+    about_own_centre = float(r.torque_shaft) - float(r.ring_shift) * float(r.force_shaft[1])
+    k = np.arange(n // 2)
+    rings = (("liner", RO, 2e-3, w_outer, r.pressure, r.displacement, float(r.torque)),
+             ("sleeve", RI, 1e-3, w_inner, r.pressure_shaft, r.displacement_shaft, about_own_centre))
+    for kind, Rr, t, w, p, u, torque in rings:
+        L = np.asarray(vjax.element_symbol(kind, n, Rr, 0.5, thickness=t))[k]
+        loss = -np.imag(np.asarray(SLS.compliance(k * abs(w))))
+        dissipation = abs(w) * Rr**2 * 2 * np.pi / n**2 * 2 * np.sum(k * L * loss * np.abs(np.fft.rfft(p)[k]) ** 2)
+        arm = np.max(np.abs(np.asarray(u))) / Rr
+        assert dissipation > 0
+        np.testing.assert_allclose(w * torque, dissipation, rtol=max(arm, 1e-9))
+
