@@ -193,16 +193,17 @@ def test_pin_in_a_liner_gradient_vs_finite_differences_and_vmap():
 
 
 def test_thin_bushing_tends_to_a_winkler_foundation():
-    """A thin compressible liner is a bed of independent springs (Winkler), u = p t (1+nu)(1-2nu) /
-    ((1-nu) E): inside the contact the pressure is the spring stiffness times the displacement."""
-    m = Material.elastic(1e8, 0.3)
-    t = 1e-4
-    r = vjax.pin_in_hole(vjax.liner(m, t), R, 1e-4, 2e4, options=PinOptions(n=2048))
-    k = (1 - 0.3) * 1e8 / (t * (1 + 0.3) * (1 - 2 * 0.3))          # spring stiffness (Pa/m)
-    u = np.asarray(r.displacement)
+    """A thin compressible liner is a bed of independent springs (Winkler, vjax.reference):
+    the pin's contact angle and its pressure inside the contact approach that limit."""
+    m, t, c, F = Material.elastic(1e8, 0.3), 1e-4, 1e-4, 2e4
+    r = vjax.pin_in_hole(vjax.liner(m, t), R, c, F, options=PinOptions(n=2048))
+    k = vjax.reference.oedometric_stiffness(1e8, 0.3, t)
+    alpha, _, p_winkler = vjax.reference.winkler_pin(F, R, c, k)
+    assert float(r.contact_angle) == pytest.approx(float(alpha), rel=0.02)
     p = np.asarray(r.pressure)
     inside = p > 0.2 * p.max()                   # away from the edges, where the layer shears
-    assert np.allclose(p[inside], k * u[inside], rtol=0.03)
+    assert np.allclose(p[inside], np.asarray(k * np.asarray(r.displacement))[inside], rtol=0.03)
+    assert float(p.max()) == pytest.approx(float(p_winkler(0.0)), rel=0.03)
 
 
 def test_a_liner_has_no_reference_length_and_checks_its_input():

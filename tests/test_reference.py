@@ -50,6 +50,19 @@ def test_lame_is_mode_zero_of_the_ring_operators(nu):
                            atol=1e-18)
 
 
+# ------------------------------------------------------------------------------ Winkler
+def test_winkler_pin_carries_the_load_and_closes_at_the_edge():
+    R, c, k, F = 0.02, 5e-5, 1e12, 3e4
+    alpha, e, p = ref.winkler_pin(F, R, c, k)
+    assert float(p(float(alpha))) == pytest.approx(0.0, abs=1e-9 * float(p(0.0)))
+    total = R * integrate.quad(lambda th: float(p(th)) * np.cos(th), -float(alpha), float(alpha), epsrel=1e-12)[0]
+    assert total == pytest.approx(F, rel=1e-9)
+    # small contact: the parabolic (Hertz-like) limit, F ~ (2/3) R k c alpha^3
+    a_small, _, _ = ref.winkler_pin(1e-3, R, c, k)
+    assert 2 / 3 * R * k * c * float(a_small) ** 3 == pytest.approx(1e-3, rel=1e-4)
+    assert float(ref.oedometric_stiffness(2e6, 0.3, 1e-3)) == pytest.approx(2e6 * 0.7 / (1.3 * 0.4 * 1e-3))
+
+
 # ------------------------------------------------------------------------------ Persson
 def _gauss_chebyshev_pressure(b, m=60):
     """The arc equation of the Persson problem (K = 1) by Gauss-Chebyshev collocation:

@@ -7,6 +7,8 @@ re-coding them. SI units, plane strain, per unit axial length; jax.numpy through
   Mechanics*, CUP 1985, Section 4.3).
 - :func:`lame_displacement`: uniform pressure on a hole in an infinite plane or on a solid
   cylinder (Lame; the n = 0 modes of the ring kernels A.45 and A.60).
+- :func:`winkler_pin`: a pin in a thin bushing modelled as a bed of independent springs (the
+  limit a thin bonded liner must approach), with :func:`oedometric_stiffness`.
 - Pin in a clearance hole in an incompressible elastic plane, rigid pin (the reference of
   thesis Figs. 2.5-2.6, after Persson's 1964 thesis): :func:`persson_pressure`,
   :func:`persson_load_parameter`, :func:`persson_b_from_load`, :func:`persson_limit_b`. The
@@ -27,7 +29,7 @@ import numpy as np
 from . import _checks
 from ._solve import bisect
 
-__all__ = ["hertz_line_contact", "lame_displacement", "persson_shape_functions", "persson_coefficients",
+__all__ = ["hertz_line_contact", "lame_displacement", "winkler_pin", "oedometric_stiffness", "persson_shape_functions", "persson_coefficients",
            "persson_pressure", "persson_load_parameter", "persson_b_from_load", "persson_limit_b",
            "long_bearing", "half_sommerfeld_load", "half_sommerfeld_eccentricity"]
 
@@ -63,6 +65,29 @@ def lame_displacement(kind: str, pressure, R, E, nu):
     _checks.one_of("kind", kind, ("hole", "disc"))
     factor = (1 + nu) if kind == "hole" else (1 + nu) * (1 - 2 * nu)
     return pressure * R * factor / E
+
+
+# ------------------------------------------------------------------------------ Winkler
+def oedometric_stiffness(E, nu, thickness):
+    """Spring stiffness (Pa/m) of a thin layer bonded on one side: the constrained modulus
+    E (1 - nu) / ((1 + nu)(1 - 2 nu)) over the thickness (nu < 0.5)."""
+    return E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * thickness)
+
+
+def winkler_pin(load, R, radial_clearance, stiffness):
+    """A pin of radius R - c in a bore of radius R lined with independent springs (Pa/m),
+    small displacements: p = k (e cos(theta) - c) where positive. The contact half-angle
+    alpha (cos alpha = c / e) solves F = R k c (alpha - sin alpha cos alpha) / cos alpha.
+    Returns ``(alpha, e, pressure(theta))``; theta from the load line."""
+    _scalars_positive(load=load, R=R, radial_clearance=radial_clearance, stiffness=stiffness)
+    c, k = radial_clearance, stiffness
+    f = lambda a: R * k * c * (a - jnp.sin(a) * jnp.cos(a)) / jnp.cos(a) - load
+    alpha = bisect(f, jnp.asarray(1e-12), jnp.asarray(jnp.pi / 2 - 1e-12), 100)
+    e = c / jnp.cos(alpha)
+
+    def pressure(theta):
+        return k * jnp.maximum(e * jnp.cos(jnp.asarray(theta)) - c, 0.0)
+    return alpha, e, pressure
 
 
 # ------------------------------------------------------------------------------ Persson
