@@ -9,7 +9,9 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
 2. ``foundation``: material laws and the ring Green's functions (Figs. 2.3, A.4, A.6);
 3. ``pin``: pin in a hole (Figs. 2.5-2.10);
 4. ``roller``: needle roller bearing (Figs. 2.14-2.21);
-5. ``journal``: visco-elastohydrodynamic journal bearing (Figs. 3.4-3.8).
+5. ``journal``: visco-elastohydrodynamic journal bearing (Figs. 3.4-3.8);
+6. ``bodies``: bushings and liners of finite thickness against the infinite plane (the
+   thesis's test bearing as built, a pin in a thin bushing, a water-lubricated journal bearing).
 
 ``<out>/summary.md`` opens with what was computed and a table of every stage's checks
 (value, reference, tolerance, PASS/FAIL), defines the symbols, then gives each stage's
@@ -32,6 +34,7 @@ STAGES = [
     ("pin", "experiments.pin_figures", "main"),
     ("roller", "experiments.roller_figures", "main"),
     ("journal", "experiments.journal_figures", "main"),
+    ("bodies", "experiments.bodies_figures", "main"),
 ]
 
 

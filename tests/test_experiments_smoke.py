@@ -93,3 +93,14 @@ def test_torque_twin_quick(tmp_path):
     for suffix in ("data.csv", "params.csv", "summary.csv", "refined.json", "truth.json", "torque.png",
                    "moduli.png", "loss.png", "summary.txt"):
         assert (tmp_path / f"torque_twin_pin_{suffix}").exists(), suffix
+
+
+def test_bodies_figures_quick(tmp_path):
+    from experiments import bodies_figures
+    report = bodies_figures.main(out_dir=tmp_path / "bodies", quick=True)
+    assert all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]
+    for name, _ in report.figures:
+        assert (tmp_path / "bodies" / name).stat().st_size > 10_000
+    _, values = _numeric_cells(tmp_path / "bodies" / "bodies_test_bearing.csv")
+    assert values and all(math.isfinite(v) for v in values)
+
