@@ -156,6 +156,17 @@ print(f"d objective/d clearance = {float(df_dc):.4g} (N m/m)/m, d objective/d om
 h = 1e-7
 fd = (objective(h, 30.0)[0] - objective(-h, 30.0)[0]) / (2 * h)
 print(f"finite difference d/d clearance: {float(fd):.4g}")'''),
+    ("md", "## Which body? A bushing in a holder versus the thesis's infinite plane\n\n"
+           "The thesis models the outer ring as a hole in an infinite plane; a real polymer outer race is "
+           "a bushing pressed into a steel holder: `vjax.liner(material, thickness)`. A polymer-sleeved "
+           "shaft is `vjax.sleeve(material, thickness)`. Pick a hole or a disc for a part much thicker "
+           "than the contact and the clearance, a liner or a sleeve for a layer whose thickness is "
+           "comparable to the contact width or the radius. Layers have no log reference length."),
+    ("code", '''for name, housing in (("infinite plane", m), ("2 mm bushing", vjax.liner(m, 2e-3)),
+                      ("0.5 mm bushing", vjax.liner(m, 0.5e-3))):
+    rb = vjax.roller_bearing(housing, None, R_O, R_I, D, Z, load, omega_shaft=10.0, options=opts)
+    print(f"{name:15s} torque {float(rb.torque):.4g} N m/m, roller loads "
+          + " ".join(f"{q:.1f}" for q in rb.roller_loads[0, :3]) + " N/m")'''),
     ("md", "## A small design optimization\n\nMinimize the penalized torque over the clearance "
            "(preload allowed down to -20 um) by sign-gradient steps with a shrinking step (scale-free); "
            "each step is one solve plus its implicit gradient."),
