@@ -151,7 +151,7 @@ def fig_3_5_3_6(out, n):
                          f"att={float(_deg(s.attitude_angle)):.1f} deg", fontsize=8)
             if i == len(MEMORIES) - 1:
                 ax.set_xlabel("theta from the line of centres [deg]")
-    fig.suptitle("Fig. 3.5: omega~_B = 0.2, omega~_J = -0.4, H = -4.5e-9")
+    fig.suptitle(f"Fig. 3.5: HS, SH and SS, {CASE}, H = -4.5e-9", fontsize=9)
     _common.save_figure(fig, out / "fig3_5_configurations.png")
     for (cfg, mem), s in sols.items():
         for k in range(n):
@@ -229,11 +229,11 @@ def fig_3_7_3_8(out, n, speeds):
             s = profiles[(mem, wj)]
             th, h, p = _centred(s.theta, s.film, s.pressure)
             col = plt.cm.viridis(k / max(1, len(show) - 1))
-            ax.plot(th, h / C, "-", color=col, label=f"omega~_J = {wj:.2g}")
+            ax.plot(th, h / C, "-", color=col, label=rf"$\tilde\omega_J$ = {wj:.2g}")
             ax2.plot(th, p / E0, "--", color=col)
         ax.set_ylabel("h / c (solid)")
         ax2.set_ylabel("p / E0 (dashed)")
-        ax.set_title(f"HS, omega~_B = 0.2, memory = {mem}", fontsize=9)
+        ax.set_title(rf"HS, $\tilde\omega_B$ = 0.2, memory = {mem}", fontsize=9)
         ax.legend(fontsize=7)
     axes[-1].set_xlabel("theta from the line of centres [deg]")
     fig.suptitle("Fig. 3.7: HS sweep in journal speed")
@@ -260,14 +260,14 @@ def fig_3_7_3_8(out, n, speeds):
     axr.set_ylabel("eps", color="b")
     bx.set_ylabel("C~_v,B")
     bxr.set_ylabel("C_v,B / C_B [%]", color="m")
-    bx.set_xlabel("|omega~_J|")
+    bx.set_xlabel(r"$|\tilde\omega_J|$")
     for a in (ax, bx):
         a.set_xscale("log")
     ax.legend(fontsize=6, loc="upper left")
     axr.legend(fontsize=6, loc="upper right")
     bx.legend(fontsize=6, loc="upper left")
     bxr.legend(fontsize=6, loc="upper right")
-    fig.suptitle("Fig. 3.8: HS, omega~_B = 0.2, fixed load")
+    fig.suptitle(f"Fig. 3.8: HS journal-speed sweep at fixed load; {CASE}", fontsize=9)
     _common.save_figure(fig, out / "fig3_8_hs_sweep_torques.png")
     keys = list(next(iter(table.values())).keys())
     _common.write_csv(out / "journal_fig3_8.csv", ["memory", "omega_J_tilde"] + keys,

@@ -126,7 +126,7 @@ def persson_validation(out, quick):
     for i, (Ft, th, p_num, p_an) in enumerate(pressures):
         o = np.argsort(np.angle(np.exp(1j * th)))
         thw = np.angle(np.exp(1j * th))[o]
-        ax.plot(thw, p_num[o] / E_EL, color=f"C{i}", lw=1.5, label=f"F~ = {Ft:g}")
+        ax.plot(thw, p_num[o] / E_EL, color=f"C{i}", lw=1.5, label=rf"$\tilde F$ = {Ft:g}")
         sel = o[(p_an[o] > 0)][:: max(1, n // 128)]
         ax.plot(np.angle(np.exp(1j * th[sel])), p_an[sel] / E_EL, "o", ms=3.5, mfc="none", color="k")
     ax.plot([], [], "o", mfc="none", color="k", label="analytical (vjax.reference)")
@@ -269,11 +269,11 @@ def viscoelastic(out, quick):
         axes[0].plot(speeds, C, color=COLORS[mem], ls=ls, marker=".", label=mem)
         axes[1].plot(speeds, np.tan(r.force_angle), color=COLORS[mem], ls=ls, marker=".", label=mem)
         axes[2].plot(speeds, r.friction_radius / R, color=COLORS[mem], ls=ls, marker=".", label=mem)
-    for ax, lab in zip(axes, ("C~ = |C_t| / (F R)", "tan(theta*)", "R* / R")):
-        ax.set(xscale="log", xlabel="omega~ = omega tau", ylabel=lab)
+    for ax, lab in zip(axes, (r"$\tilde C = |C_t| / (F R)$", r"$\tan\theta^*$", r"$R^*/R$")):
+        ax.set(xscale="log", xlabel=r"$\tilde\omega = \Omega\tau$", ylabel=lab)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle(f"Fig. 2.10: SLS E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, F~ = {F_TILDE}, n = {n}", fontsize=9)
+    fig.suptitle(f"Fig. 2.10: {CASE}, n = {n}", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_10.png")
     return speeds, res, n
 
