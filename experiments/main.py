@@ -66,7 +66,8 @@ def calibration_stage(out_dir, quick=False):
 
 INTRO = """vjax computed the thesis's cases with its boundary-element method on steady-state
 viscoelastic Green's functions of circular bodies: a material calibrated from DMA data, the
-ring operators, a pin in a hole, a needle roller bearing and a lubricated journal bearing.
+ring operators, a pin in a hole, a needle roller bearing, a lubricated journal bearing, and
+bushings and liners of finite thickness beside the thesis's infinite plane.
 Each stage below says what it computes, then lists its checks (value, what it is compared
 with, tolerance, PASS or FAIL), its figures with their cases, and its raw output. The table
 right below collects every check; the job exits with status 1 if one fails.
