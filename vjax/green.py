@@ -218,8 +218,8 @@ def mode_compliance(kind: str, modes, nu, thickness_ratio=None, ref_length_ratio
     displacement into the body c_n (R / E) cos(n theta), E the Young modulus:
 
     - "hole": hole in an infinite plane (A.39); n >= 2: (1+nu)/2 [kappa/(n-1) + 1/(n+1)],
-      n = 0: 1 + nu, n = 1 depends on ``ref_length_ratio`` = ref_length / R (default 1/R
-      for R = 1 m, i.e. pass it);
+      n = 0: 1 + nu; n = 1 (a rigid translation) depends on ``ref_length_ratio`` =
+      ref_length / R (default 1: the reference length equal to the radius);
     - "disc": solid cylinder fixed at its centre (A.56 with A' = -A): n >= 2:
       (1+nu)/2 [1/(n-1) + kappa/(n+1)], n = 0: (1+nu)(1-2nu);
     - "liner": a layer of thickness t = ``thickness_ratio`` R loaded on its bore, its outer
