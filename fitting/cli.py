@@ -11,6 +11,8 @@ import argparse
 import os
 import sys
 
+from . import export_cli, jax_cache
+
 
 def _parser():
     p = argparse.ArgumentParser(prog="vjax-fit", description=__doc__.splitlines()[0])
@@ -25,6 +27,11 @@ def _parser():
     p.add_argument("--shifts", help="CSV of user shift factors: T [C], log10 a_T")
     p.add_argument("--drop-nonpositive", action="store_true", help="drop points with modulus <= 0")
     p.add_argument("--no-plots", action="store_true")
+    p.add_argument("--export", default=None, metavar="FORMATS",
+                   help="also write the material for FEM codes: abaqus,ansys,lsdyna,comsol (see vjax-export; "
+                        "needs --nu < 0.5 or --bulk-modulus)")
+    export_cli.add_arguments(p, fit=True)
+    jax_cache.add_argument(p)
     return p
 
 
@@ -41,11 +48,26 @@ def output_json(prog, path):
     return out, None
 
 
+def _export(args, out) -> list:
+    """Write the FEM files of ``--export`` next to the material JSON ``out``."""
+    from . import export
+    m = export.load(out, nu=args.nu, bulk_modulus=args.bulk_modulus)
+    stem = os.path.splitext(os.path.basename(out))[0]
+    return export.export(m, args.export, os.path.dirname(out), stem, units=args.units, temperature=args.temperature)
+
+
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
-    args = _parser().parse_args(argv)
+    p = _parser()
+    args = p.parse_args(argv)
+    problem = export_cli.check_arguments(args, fit=True) if args.export else None
+    if problem:
+        p.print_usage(sys.stderr)
+        print(f"vjax-fit: error: {problem}", file=sys.stderr)
+        return 2
     import jax
     jax.config.update("jax_enable_x64", True)
+    jax_cache.enable(args.no_cache)
     from . import io, plots
     from .calibration import calibrate
 
@@ -71,6 +93,8 @@ def main(argv=None) -> int:
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += plots.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
                                       rep.data_shift)
+        if args.export:
+            written += _export(args, out)
     except (ValueError, OSError) as e:
         print(f"vjax-fit: error: {e}", file=sys.stderr)
         return 1

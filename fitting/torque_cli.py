@@ -24,6 +24,7 @@ import argparse
 import os
 import sys
 
+from . import jax_cache
 from .cli import output_json
 
 
@@ -55,6 +56,7 @@ def _parser():
     p.add_argument("--polish", type=int, default=20, help="Levenberg-Marquardt iterations after Adam (default 20)")
     p.add_argument("--fit-times", action="store_true", help="also refine the relaxation times")
     p.add_argument("--no-plots", action="store_true")
+    jax_cache.add_argument(p)
     return p
 
 
@@ -109,6 +111,7 @@ def main(argv=None) -> int:
         return code
     import jax
     jax.config.update("jax_enable_x64", True)
+    jax_cache.enable(args.no_cache)
     import numpy as np
     from . import io, plots
     from . import torque as ft
