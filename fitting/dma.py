@@ -19,6 +19,8 @@ Formats (detected from the content, not the extension):
 * **whitespace instrument export** with a unit row, e.g. ``Index Ts t f ... E' E" ...`` /
   ``[#] [C] [s] [Hz] ... [MPa] [MPa]`` (as in ``dmasuite_E_0to105C``). A trailing footer
   line that is not numeric ends the data.
+* **Netzsch Eplexor Excel** (``.xls``, raw sweeps or master curve with its shift list), read
+  by :mod:`fitting.eplexor` (needs ``xlrd``). Other binary files are refused.
 * **one file per temperature**: any of the above without a temperature column (or with it)
   whose file name holds the temperature, e.g. ``T85.txt``, ``sweep_-20C.csv``,
   ``PA66_23.5degC.txt``. The name wins over setpoint and measured columns.
@@ -277,6 +279,14 @@ def _is_number(t):
 
 
 def _blocks_from_file(path) -> list[_Block]:
+    with open(path, "rb") as fh:
+        head = fh.read(4096)
+    from . import eplexor
+    if eplexor.is_ole2(head):
+        return eplexor.blocks(path)
+    if b"\0" in head or head.startswith(b"PK\x03\x04"):
+        raise DMAFormatError(path, None, "binary file that is neither a text DMA export nor a Netzsch Eplexor .xls; "
+                                         "export the data as CSV or text (an .xlsx workbook: save it as CSV)")
     lines = _read_lines(path)
     first = next((i for i, l in enumerate(lines) if l.strip()), None)
     if first is None:
@@ -488,12 +498,12 @@ def _expand(paths) -> list[str]:
         p = os.fspath(p)
         if os.path.isdir(p):
             names = sorted(n for n in os.listdir(p) if os.path.isfile(os.path.join(p, n))
-                           and n.lower().endswith((".txt", ".csv", ".dat", ".tsv"))
+                           and n.lower().endswith((".txt", ".csv", ".dat", ".tsv", ".xls"))
                            and not n.lower().startswith(("readme", "source", "license")))
             with_T = [n for n in names if temperature_from_filename(n) is not None]
             chosen = with_T or names
             if not chosen:
-                raise DMAFormatError(p, None, "directory holds no .txt/.csv/.dat DMA files")
+                raise DMAFormatError(p, None, "directory holds no .txt/.csv/.dat/.xls DMA files")
             out += [os.path.join(p, n) for n in chosen]
         else:
             out.append(p)

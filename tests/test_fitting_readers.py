@@ -123,3 +123,66 @@ def test_pyvisco_header_with_shear_and_latin1(tmp_path):
                                    "1,0.5,0.1,40,1\n2,0.6,0.1,40,1\n", encoding="latin-1")
     t = dma.read(p)
     assert t.kind == "G" and t.n_sets == 2 and t.storage[0] == 1e9
+
+
+# ---- Netzsch Eplexor .xls exports (fitting.eplexor) ------------------------------------------
+PV = os.path.dirname(dma.default_data("pyvisco"))
+
+
+def test_eplexor_raw_xls_equals_the_csv_export():
+    """freq_Eplexor_raw.xls and freq_user_raw.csv hold the same experiment: same table to the
+    CSV's rounding (10 significant digits)."""
+    x = dma.read(os.path.join(PV, "freq_Eplexor_raw.xls"))
+    c = dma.read(dma.default_data("pyvisco"))
+    assert x.kind == c.kind == "E" and len(x) == len(c) == 210 and x.n_sets == c.n_sets == 21
+    for k in ("T", "set"):
+        np.testing.assert_array_equal(getattr(x, k), getattr(c, k))
+    for k in ("f", "T_measured", "storage", "loss"):
+        np.testing.assert_allclose(getattr(x, k), getattr(c, k), rtol=1e-9, err_msg=k)
+    assert x.source[0].endswith("freq_Eplexor_raw.xls:3")
+
+
+@pytest.mark.parametrize("name, kind, T_ref, C1, C2, n_sets",
+                         [("freq_Eplexor_master.xls", "E", 25.0, 13.50, 141.19, 21),
+                          ("freq_Eplexor_master_shear.xls", "G", -30.0, 727.24, 2299.50, 19)])
+def test_eplexor_master_xls_rebuilds_the_sweeps(name, kind, T_ref, C1, C2, n_sets):
+    """A master-curve file becomes sweeps again: each on the measured grid 0.1..100 Hz (3 per
+    decade, from the file's Data header), at a shift-list temperature; shifting them back with
+    the shift list gives the file's reduced frequencies."""
+    import xlrd
+    from fitting import eplexor
+    path = os.path.join(PV, name)
+    t = dma.read(path)
+    assert t.kind == kind and t.n_sets == n_sets
+    grid = np.linspace(-1, 2, 10)
+    lf = np.log10(t.f)
+    assert np.max(np.min(np.abs(lf[:, None] - grid), axis=1)) < 1e-6
+    T, a, Tr, wlf = eplexor.shift_list(path)
+    assert Tr == T_ref and wlf == {"C1": C1, "C2": C2}
+    assert set(np.round(t.T_measured, 6)) <= set(np.round(T, 6))
+    shift = dict(zip(np.round(T, 6), a))
+    reduced = t.f * 10.0 ** np.array([shift[v] for v in np.round(t.T_measured, 6)])
+    sheet = xlrd.open_workbook(path).sheet_by_name("Exported Data")
+    f_file = np.array(sheet.col_values(sheet.row_values(0).index("f"))[2:], float)
+    np.testing.assert_allclose(np.sort(reduced), np.sort(f_file), rtol=1e-12)
+    for s in range(t.n_sets):                    # a sweep: one temperature, increasing frequency
+        m = t.set == s
+        assert len(set(t.T[m])) == 1 and np.all(np.diff(t.f[m]) > 0)
+
+
+def test_other_binary_files_are_refused_clearly(tmp_path, monkeypatch):
+    blob = tmp_path / "sweep.xlsx"
+    blob.write_bytes(b"PK\x03\x04" + bytes(range(256)) * 4)
+    with pytest.raises(dma.DMAFormatError, match="binary file.*save it as CSV"):
+        dma.read(str(blob))
+    png = tmp_path / "T20.dat"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR")
+    with pytest.raises(dma.DMAFormatError, match="T20.dat: binary file"):
+        dma.read(str(png))
+    bad = tmp_path / "broken.xls"
+    bad.write_bytes(b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1" + b"\0" * 600)
+    with pytest.raises(dma.DMAFormatError, match="broken.xls: not a readable Excel .xls file"):
+        dma.read(str(bad))
+    monkeypatch.setitem(__import__("sys").modules, "xlrd", None)
+    with pytest.raises(dma.DMAFormatError, match="pip install xlrd"):
+        dma.read(os.path.join(PV, "freq_Eplexor_raw.xls"))
