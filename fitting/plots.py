@@ -1,4 +1,5 @@
-"""Plots of a calibration (master curve, shift factors, residuals, relaxation spectrum) and
+"""Plots of a calibration (master curve, shift factors with the WLF and Arrhenius laws,
+residuals, relaxation spectrum, temperature sweeps at fixed frequency, van Gurp-Palmen) and
 of a torque fit (torque before/after, moduli before/after).
 
 Each function draws on a new matplotlib figure (Agg backend, no display needed) and, when
@@ -16,7 +17,8 @@ import numpy as np  # noqa: E402
 
 from . import files  # noqa: E402
 
-__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "save_all", "torque_fit", "moduli"]
+__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "temperature_sweep", "van_gurp_palmen",
+           "save_all", "torque_fit", "moduli"]
 
 
 def _save(fig, path):
@@ -57,16 +59,112 @@ def master_curve(table, material, shift, path=None):
 
 def shift_factors(data_shift, shift, path=None):
     """log10 a_T per sweep (``data_shift``, a ShiftTable estimated from the data or refined)
-    with the fitted shift law as a line."""
-    fig, ax = plt.subplots(figsize=(5.5, 4.2))
-    T = np.asarray(data_shift.T)
-    ax.plot(T, np.asarray(data_shift.values), "o", label="per sweep")
-    Tl = np.linspace(T.min(), T.max(), 300)
-    ax.plot(Tl, np.asarray(shift.log10_aT(Tl)), "-", label=type(shift).__name__)
+    with the material's shift law and both closed-form laws: the material's own WLF or
+    Arrhenius, the other one (or both, for a table law) fitted to the per-sweep factors
+    (:func:`fitting.master.fit_law`, rms misfit in the legend). The legend says which law the
+    material uses."""
+    from .master import fit_law
+    T, values = np.asarray(data_shift.T, float), np.asarray(data_shift.values, float)
+    if T.size == 0 or T.shape != values.shape or not (np.all(np.isfinite(T)) and np.all(np.isfinite(values))):
+        raise ValueError("data_shift must hold finite per-sweep shift factors (T and log10 a_T of equal length)")
+    own = type(shift).__name__
+    own = "table" if own == "ShiftTable" else own
+    fig, ax = plt.subplots(figsize=(6.2, 4.4))
+    ax.plot(T, values, "o", color="k", ms=5, label="per sweep (table)")
+    Tl = np.linspace(T.min() - 5.0, T.max() + 5.0, 300)
+    for law, style in (("table", "k-"), ("WLF", "C0--"), ("Arrhenius", "C3-.")):
+        if law == own:
+            fitted, note = shift, "the material's law"
+        elif law == "table":
+            continue
+        else:
+            fitted, rms = fit_law(data_shift, law)
+            note = f"fitted to the table, rms {rms:.3f} dec"
+        Tv = Tl
+        if law == "WLF":   # only above the WLF asymptote T_ref - C2
+            Tv = Tl[Tl > float(fitted.T_ref) - float(fitted.C2) + 1e-6 * max(1.0, float(fitted.C2))]
+        consts = {"table": "", "WLF": f": $C_1$ = {float(getattr(fitted, 'C1', 0)):.4g}, "
+                                      f"$C_2$ = {float(getattr(fitted, 'C2', 0)):.4g} K",
+                  "Arrhenius": f": $E_a$ = {float(getattr(fitted, 'Ea', 0)) / 1e3:.4g} kJ/mol"}[law]
+        ax.plot(Tv, np.asarray(fitted.log10_aT(Tv)), style, lw=2.0 if law == own else 1.2,
+                label=f"{law}{consts} ({note})")
     ax.axvline(float(shift.T_ref), color="0.7", lw=0.8)
-    ax.set_xlabel("T (C)")
+    ax.set_xlabel(r"temperature $T$ (°C)")
     ax.set_ylabel(r"$\log_{10} a_T$")
-    ax.legend()
+    ax.set_title(f"shift factors, $T_{{ref}}$ = {float(shift.T_ref):g} °C; the material uses: {own}", fontsize=10)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def _check_frequencies(frequencies):
+    f = np.atleast_1d(np.asarray(frequencies, float))
+    if f.size == 0 or f.ndim != 1 or not np.all(np.isfinite(f) & (f > 0)):
+        raise ValueError(f"frequencies must be a non-empty list of finite values > 0 (Hz), got {frequencies!r}")
+    return f
+
+
+def _check_table(table):
+    if len(table) == 0:
+        raise ValueError("the DMA table holds no points")
+
+
+def _valid_temperatures(shift, T):
+    """``T`` without the temperatures at or below a WLF law's asymptote T_ref - C2."""
+    if hasattr(shift, "C2"):
+        T = T[T > float(shift.T_ref) - float(shift.C2) + 1e-6 * max(1.0, float(shift.C2))]
+    return T
+
+
+def temperature_sweep(table, material, shift, frequencies=(1.0, 10.0), path=None):
+    """A DMA temperature sweep rebuilt from the fit: storage, loss (Pa) and tan delta versus
+    temperature (°C) at fixed ``frequencies`` (Hz), E*(2 pi f a_T(T)) (time-temperature
+    superposition, docs/theory.md §14), lines; the measured points at those frequencies
+    (within 2 %), markers."""
+    _check_table(table)
+    freqs = _check_frequencies(frequencies)
+    k = table.kind
+    T = _valid_temperatures(shift, np.linspace(table.T.min(), table.T.max(), 300))
+    if T.size == 0:
+        raise ValueError("the shift law is undefined over the data's temperatures")
+    aT = 10.0 ** np.asarray(shift.log10_aT(T))
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
+    for j, f in enumerate(freqs):
+        E = np.asarray(material.modulus(2 * np.pi * f * aT))
+        c = f"C{j % 10}"
+        for a, y in zip(ax, (E.real, E.imag, E.imag / E.real)):
+            a.plot(T, y, "-", color=c, label=f"fit, {f:g} Hz")
+        m = np.abs(np.log10(table.f / f)) < np.log10(1.02)
+        if m.any():
+            for a, y in zip(ax, (table.storage[m], table.loss[m], table.loss[m] / table.storage[m])):
+                a.plot(table.T[m], y, "o", color=c, ms=4, mfc="none", label=f"data, {f:g} Hz")
+    labels = (f"storage modulus ${k}'$ (Pa)", f"loss modulus ${k}''$ (Pa)", r"loss factor $\tan\delta$")
+    for a, lab in zip(ax, labels):
+        a.set_yscale("log")
+        a.set_xlabel(r"temperature $T$ (°C)")
+        a.set_ylabel(lab)
+    ax[0].legend(fontsize=8)
+    fig.suptitle("temperature sweep at fixed frequency, rebuilt from the fitted master curve and shift law")
+    return _save(fig, path)
+
+
+def van_gurp_palmen(table, material, shift, path=None):
+    """Van Gurp-Palmen plot: phase angle delta = atan(loss/storage) (degrees) versus |E*| (Pa),
+    data coloured by temperature and the fit over the data's reduced-frequency range (one
+    curve when time-temperature superposition holds)."""
+    _check_table(table)
+    mag, delta = np.hypot(table.storage, table.loss), np.degrees(np.arctan2(table.loss, table.storage))
+    wr = _reduced(table, shift)
+    w = np.logspace(np.log10(wr.min()) - 0.5, np.log10(wr.max()) + 0.5, 400)
+    E = np.asarray(material.modulus(w))
+    fig, ax = plt.subplots(figsize=(6.2, 4.4))
+    sc = ax.scatter(mag, delta, c=table.T, s=10, cmap="coolwarm", label="data")
+    ax.plot(np.abs(E), np.degrees(np.angle(E)), "k-", lw=1.2, label=f"Prony fit, {material.moduli.shape[0]} terms")
+    ax.set_xscale("log")
+    ax.set_xlabel(f"complex modulus $|{table.kind}^*|$ (Pa)")
+    ax.set_ylabel(r"phase angle $\delta$ (°)")
+    ax.legend(fontsize=8)
+    fig.colorbar(sc, ax=ax, label=r"$T$ (°C)")
+    ax.set_title("van Gurp-Palmen plot")
     return _save(fig, path)
 
 
@@ -104,11 +202,14 @@ def spectrum(material, path=None):
 
 
 def save_all(out_dir, stem, table, material, shift, data_shift) -> list:
-    """Write the four plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
-    ``_spectrum.png`` in ``out_dir``; returns their paths."""
+    """Write the plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
+    ``_spectrum.png``, ``_tsweep.png`` (E', E'', tan delta versus T at 1 and 10 Hz) and
+    ``_vgp.png`` (van Gurp-Palmen) in ``out_dir``; returns their paths."""
     p = lambda s: os.path.join(out_dir, f"{stem}_{s}.png")
     return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift")),
-            residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum"))]
+            residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum")),
+            temperature_sweep(table, material, shift, (1.0, 10.0), p("tsweep")),
+            van_gurp_palmen(table, material, shift, p("vgp"))]
 
 
 def torque_fit(data, fits, sigma, path=None, truth=None):
