@@ -4,6 +4,9 @@ Prints a summary table (terms, errors, shift parameters, time), writes the mater
 atomically and the plots next to it (``<out stem>_master.png`` etc.). Exit codes: 0 success,
 1 bad data or failed fit (message on stderr), 2 bad command line. An existing output is
 never left half-written: every file goes through a temporary file and ``os.replace``.
+``--export abaqus,ansys,lsdyna,comsol`` also writes the material for FEM codes (see
+``vjax-export``, :mod:`fitting.export`; needs ``--nu`` < 0.5 or ``--bulk-modulus``).
+Compiled functions are kept in a persistent cache (:mod:`fitting.jax_cache`; ``--no-cache``).
 """
 from __future__ import annotations
 
