@@ -8,6 +8,7 @@ plots written):
 * ``vjax-fit`` with a fresh, empty cache directory (first call: every function compiled and
   stored), then again with the same cache (second call), ``repeats`` times each, each time
   with a new empty cache for the first call;
+* the second call again with ``--no-plots`` (the six PNGs cost seconds of matplotlib);
 * ``vjax-fit --no-cache`` (the behaviour before the cache);
 * pyvisco's default pipeline on the same data (:func:`experiments.dma_fit.run_pyvisco`), in
   this process, when pyvisco is installed.
@@ -58,11 +59,12 @@ def main(out_dir="experiments/out", quick=False):
     with tempfile.TemporaryDirectory() as work:
         fit = ["-m", "fitting.cli", data, "--tref", "25", "--out", os.path.join(work, "m.json")]
         imp = [_run(["-c", "import vjax, fitting"], _env(work)) for _ in range(repeats)]
-        first, second, nocache = [], [], []
+        first, second, second_np, nocache = [], [], [], []
         for r in range(repeats):
             cache = os.path.join(work, f"cache{r}")
             first.append(_run(fit, _env(cache)))
             second.append(_run(fit, _env(cache)))
+            second_np.append(_run(fit + ["--no-plots"], _env(cache)))
             nocache.append(_run(fit + ["--no-cache"], _env(cache)))
         size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(os.path.join(work, "cache0")) for f in fs)
         files = sum(len(fs) for _, _, fs in os.walk(os.path.join(work, "cache0")))
@@ -72,6 +74,7 @@ def main(out_dir="experiments/out", quick=False):
     rows = [("import vjax, fitting", med(imp), min(imp), repeats),
             ("vjax-fit, first call (empty cache)", med(first), min(first), repeats),
             ("vjax-fit, second call (cache filled)", med(second), min(second), repeats),
+            ("vjax-fit --no-plots, cache filled", med(second_np), min(second_np), repeats),
             ("vjax-fit --no-cache", med(nocache), min(nocache), repeats)]
     if pv[0] is not None:
         w = [p["wall_time"] for p in pv]
