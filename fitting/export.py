@@ -111,19 +111,6 @@ class FEMMaterial:
         """Instantaneous Poisson ratio (3 K - 2 G_g) / (2 (3 K + G_g))."""
         return (3.0 * self.K - 2.0 * self.G_g) / (2.0 * (3.0 * self.K + self.G_g))
 
-    def shear_relaxation(self, t):
-        """G(t) = G_inf + sum_i G_i exp(-t / tau_i) (Pa), t in s."""
-        t = np.asarray(t, float)[..., None]
-        return self.G_inf + np.sum(self.G * np.exp(-t / self.tau), axis=-1)
-
-    def log10_aT(self, T):
-        """log10 a_T at T (C)."""
-        T = np.asarray(T, float)
-        if self.law == "WLF":
-            d = T - self.T_ref
-            return -self.shift["C1"] * d / (self.shift["C2"] + d)
-        return self.shift["Ea"] / (GAS_CONSTANT * math.log(10.0)) * (1.0 / (T + KELVIN) - 1.0 / (self.T_ref + KELVIN))
-
 
 def _alternatives(d: dict) -> dict:
     """Closed-form shift laws carried next to a table law, as {law: shift dict}; tolerant of
@@ -206,6 +193,9 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
             raise ValueError(f"{where}: the material carries no {shift_law} alternative to its {law} shift law")
         s = dict(alts[shift_law])
         s.setdefault("T_ref", d["shift"]["T_ref"])
+        if float(s["T_ref"]) != float(d["shift"]["T_ref"]):
+            raise ValueError(f"{where}: the {shift_law} alternative refers to T_ref = {s['T_ref']} C, the Prony "
+                             f"series to {d['shift']['T_ref']} C")
         law = shift_law
     if law == "table":
         alts = _alternatives(d)

@@ -241,6 +241,9 @@ def test_table_law_names_the_alternative(tmp_path, capsys):
     assert "table" in err and "C1 = 9.5" in err and "--shift-law WLF" in err
     assert export_cli.main([path, "--format", "ansys", "--shift-law", "WLF"]) == 0
     _check(dict(d, shift=alt), "ansys", str(tmp_path), "mat", "SI", nu=0.45)
+    shifted = _write(tmp_path, dict(d, shift_alternatives=[dict(alt, T_ref=30.0)]), "shifted")
+    assert export_cli.main([shifted, "--format", "ansys", "--shift-law", "WLF"]) == 1
+    assert "refers to T_ref = 30.0 C" in capsys.readouterr().err
     bare = _write(tmp_path, dict(d, shift_alternatives=None), "bare")
     assert export_cli.main([bare, "--format", "ansys"]) == 1
     assert "refit with vjax-fit --law WLF" in capsys.readouterr().err
