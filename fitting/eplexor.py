@@ -179,8 +179,10 @@ def blocks(path) -> list:
     if "Shiftlist" in book.sheet_names():
         set_id, T_set, a_pt = _master_sets(book, path, col, data, np.asarray(lines))
         data[:, col["f"]] = data[:, col["f"]] / 10.0 ** a_pt          # back to the measured frequency
-        if "T" in col:
-            data[:, col["T"]] = T_set                                   # the sweep's, not T_ref
+        if "T" not in col:
+            names, units, col["T"] = names + ["T"], units + ["°C"], len(names)
+            data = np.column_stack([data, T_set])
+        data[:, col["T"]] = T_set                                       # the sweep's, not T_ref
         order = np.lexsort((data[:, col["f"]], set_id))
         data, lines, set_id = data[order], list(np.asarray(lines)[order]), set_id[order]
     else:
