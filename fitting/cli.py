@@ -96,13 +96,20 @@ def main(argv=None) -> int:
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += plots.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
                                       rep.data_shift)
-        if args.export:
-            written += _export(args, out)
     except (ValueError, OSError) as e:
         print(f"vjax-fit: error: {e}", file=sys.stderr)
         return 1
     print(rep.table())
+    export_error = None
+    if args.export:
+        try:
+            written += _export(args, out)
+        except (ValueError, OSError) as e:     # the fit is written: say so, then why the export is not
+            export_error = e
     print("wrote " + ", ".join(written))
+    if export_error:
+        print(f"vjax-fit: error: no FEM export: {export_error}", file=sys.stderr)
+        return 1
     return 0
 
 

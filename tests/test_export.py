@@ -280,6 +280,16 @@ def test_shipped_example_exports_read_back(shipped_fit, tmp_path):
         _check(d, fmt, str(tmp_path), "pyvisco", "mm-N-s-MPa", nu=0.45)
 
 
+def test_fit_cli_table_law_keeps_the_fit_and_explains(tmp_path, capsys):
+    out = tmp_path / "m.json"
+    table = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_user_raw.csv")
+    code = fit_cli.main([table, "--tref", "25", "--law", "table", "--out", str(out), "--nu", "0.45",
+                         "--export", "abaqus", "--no-plots"])
+    assert code == 1 and out.exists() and not (tmp_path / "m_abaqus.inp").exists()
+    cap = capsys.readouterr()
+    assert "wrote " + str(out) in cap.out and "no FEM export" in cap.err and "table of shift factors" in cap.err
+
+
 def test_fit_cli_checks_export_options_first(tmp_path, capsys):
     out = str(tmp_path / "m.json")
     assert fit_cli.main([default_data("pyvisco"), "--tref", "25", "--out", out, "--export", "abaqus"]) == 2
