@@ -8,7 +8,9 @@
 Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF/Arrhenius),
 :mod:`fitting.prony` (Prony fit and refinement), :mod:`fitting.calibration` (the whole chain),
 :mod:`fitting.io` (material JSON), :mod:`fitting.files` (atomic writes),
-:mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``).
+:mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``), :mod:`fitting.eplexor` (Netzsch
+Eplexor .xls), :mod:`fitting.export` and :mod:`fitting.export_cli` (``vjax-export``: Abaqus,
+ANSYS, LS-DYNA, COMSOL), :mod:`fitting.jax_cache` (the tools' compilation cache).
 """
 import importlib
 
