@@ -56,7 +56,9 @@ def check_arguments(args, fit: bool = False):
 
 
 def _parser():
-    p = argparse.ArgumentParser(prog="vjax-export", description=__doc__.splitlines()[0],
+    p = argparse.ArgumentParser(prog="vjax-export",
+                                description="Write a fitted material JSON for finite-element codes (Abaqus, ANSYS, "
+                                            "LS-DYNA, COMSOL): shear Prony series, bulk modulus, shift law.",
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
                                 epilog="Example: vjax-export material.json --format abaqus,ansys --nu 0.45")
     p.add_argument("material", help="material JSON (vjax-fit output)")
