@@ -27,7 +27,7 @@ import numpy as np
 from vjax import _checks
 from vjax.material import Material
 
-from . import dma, io, master, plots, prony
+from . import dma, io, master, plots, prony, relaxation, spectrum
 
 __all__ = ["calibrate", "Report"]
 
@@ -40,12 +40,18 @@ ROBUST = 0.03
 FTOL = 1e-5
 SCREEN_FTOL = 3e-5     # the term-count candidates; the chosen one is finished at FTOL
 TAU_MARGIN = 0.0
+CLOSED_FORM = ("WLF", "Arrhenius")
 
 
 @dataclasses.dataclass
 class Report:
     """What a calibration did. Errors are |log10(pred/meas)| on the raw unshifted points
-    (median and 90th percentile, storage and loss separately)."""
+    (median and 90th percentile; storage and loss separately, or the relaxation modulus).
+
+    ``alternatives``: the closed-form shift laws not chosen, each fitted end to end, as
+    {law: {constants, 'sigma', 'errors', 'bic', 'delta_log10_aT_vs_table': {'rms', 'max'}}}
+    (the material JSON carries it as ``shift_alternatives``). ``smoothing``: the penalty of
+    method 'smooth' (criterion, weight, effective parameters, loss-modulus extrema)."""
 
     terms: int
     law: str
@@ -64,29 +70,56 @@ class Report:
     data_shift: object = None
     criterion: tuple = ()
     outputs: list = dataclasses.field(default_factory=list)
+    method: str = "smooth"
+    domain: str = "frequency"
+    alternatives: dict = dataclasses.field(default_factory=dict)
+    smoothing: dict | None = None
+    laws: dict = dataclasses.field(default_factory=dict)
+
+    def _law_line(self, law, params, sigma) -> str:
+        return f"{law}  " + "  ".join(
+            f"{k}={v:.5g}" + (f" +- {sigma[k]:.2g}" if isinstance(sigma.get(k), float) else "")
+            for k, v in params.items() if k in ("C1", "C2", "Ea", "T_ref"))
 
     def table(self) -> str:
         """A plain-text summary table."""
         e = self.errors
         pct = lambda v: f"{(10 ** v - 1) * 100:.1f}%"
+        what = "E(t)" if self.domain == "time" else f"{self.kind}' and {self.kind}''"
+        how = (f"smooth spectrum, GCV weight {self.smoothing['lam']:.3g}" if self.smoothing else
+               "free times, count by BIC") + f", loss modulus with {e['loss_extrema']} extrema over the data"
         lines = [
-            f"data            {self.n_points} points, {self.n_sets} temperatures, {self.kind}' and {self.kind}''"
+            f"data            {self.n_points} points, {self.n_sets} temperatures, {what}"
             + (f", {self.dropped} dropped" if self.dropped else ""),
             f"T_ref           {self.T_ref:g} C",
-            f"shift law       {self.law}  " + "  ".join(
-                f"{k}={v:.5g}" + (f" +- {self.uncertainty[k]:.2g}" if isinstance(self.uncertainty.get(k), float) else "")
-                for k, v in self.shift_params.items() if not isinstance(v, list)),
-            f"Prony terms     {self.terms}  (BIC after refinement on raw data; {self.iterations} iterations, "
-            f"{'converged' if self.converged else 'NOT converged'})",
-            "error |log10(pred/meas)|   median      p90",
-            f"  storage                  {e['storage_median']:.4f} ({pct(e['storage_median'])})  "
-            f"{e['storage_p90']:.4f} ({pct(e['storage_p90'])})",
-            f"  loss                     {e['loss_median']:.4f} ({pct(e['loss_median'])})  "
-            f"{e['loss_p90']:.4f} ({pct(e['loss_p90'])})",
-            "candidates      " + "; ".join(f"{c['law']}: BIC {c['bic']:.1f}, rms {c['rms']:.4f}" for c in self.candidates),
-            f"time            {self.wall_time:.2f} s",
+            "shift law       " + (self._law_line(self.law, self.shift_params, self.uncertainty)
+                                  if self.law != "table" else f"table of {self.n_sets} factors"),
         ]
+        for law, alt in self.alternatives.items():
+            d = alt["delta_log10_aT_vs_table"]
+            lines.append(f"  alternative   {self._law_line(law, alt, alt['sigma'])}  (rms {d['rms']:.3f}, "
+                         f"max {d['max']:.3f} decades from the table; raw-data rms {alt['errors']['rms']:.4f})")
+        lines += [
+            f"Prony terms     {self.terms}  ({how}; {self.iterations} iterations, "
+            f"{'converged' if self.converged else 'NOT converged'})",
+            "error |log10(pred/meas)|   median      p90"]
+        for part in ("relaxation",) if self.domain == "time" else ("storage", "loss"):
+            lines.append(f"  {part:<24s} {e[part + '_median']:.4f} ({pct(e[part + '_median'])})  "
+                         f"{e[part + '_p90']:.4f} ({pct(e[part + '_p90'])})")
+        lines += ["candidates      " + "; ".join(f"{c['law']}: BIC {c['bic']:.1f}, rms {c['rms']:.4f}"
+                                               for c in self.candidates),
+                  f"time            {self.wall_time:.2f} s"]
         return "\n".join(lines)
+
+    def save(self, path, material, shift, modulus, **fit_extra) -> None:
+        """Write the material JSON (:mod:`fitting.io`) with this report's errors, the shift-law
+        alternatives (``shift_alternatives``) and the smoothing in it, atomically."""
+        fit = {"errors": self.errors, "terms": self.terms, "law": self.law, "method": self.method,
+               "data_kind": self.kind, "domain": self.domain, "points": self.n_points, **fit_extra}
+        if self.smoothing:
+            fit["smoothing"] = self.smoothing
+        io.save_material(path, material, shift, modulus=modulus, uncertainty=self.uncertainty, fit=fit,
+                         shift_alternatives=self.alternatives)
 
 
 def tensile_over_shear(nu) -> float:
@@ -101,44 +134,9 @@ def convert_modulus(material: Material, factor) -> Material:
                           np.asarray(material.times), material.nu)
 
 
-def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tensile=True, shifts=None,
-              drop_nonpositive=False, densities=(0.5, 0.75, 1.0, 1.25, 1.5), max_iter=300, plots_=True,
-              stem="material"):
-    """Calibrate a Prony material and shift law from DMA frequency sweeps.
-
-    Args:
-      paths: DMA file(s)/directory(ies), see :func:`fitting.dma.read`.
-      T_ref: reference temperature (C); need not be a measured one.
-      out_dir: if given, writes ``<stem>.json`` and the plots there (atomically).
-      law: 'WLF', 'Arrhenius', 'table' or 'auto' (lowest BIC among WLF and table).
-      nu: Poisson's ratio stored in the material (and used for G -> E).
-      kind: override 'E'/'G' from the files. tensile: convert shear data to E.
-      shifts: user shift factors (a :class:`fitting.master.ShiftTable` or a CSV path with
-        T [C], log10 a_T); used as the start instead of the data overlap.
-      densities: Prony relaxation times per decade tried by the BIC.
-    Returns ``(Material, shift, Report)``; the material's moduli are in Pa (tensile E unless
-    the data are shear and ``tensile=False``), times in s, at T_ref.
-    """
-    t0 = time.perf_counter()
-    if law not in ("auto", "WLF", "Arrhenius", "table"):
-        raise ValueError(f"law must be 'auto', 'WLF', 'Arrhenius' or 'table', got {law!r}")
-    if not (isinstance(T_ref, (int, float)) and math.isfinite(T_ref)):
-        raise ValueError(f"T_ref must be a finite temperature in C, got {T_ref!r}")
-    _checks.poisson("nu", nu)    # before reading and fitting, not when the material is built
-    table = dma.read(paths, kind=kind, drop_nonpositive=drop_nonpositive)
-    if shifts is None:
-        # pair shifts from the storage modulus alone (as pyvisco does): in the glassy range the
-        # loss often follows a secondary relaxation that does not superpose with the same a_T,
-        # and would pin the cold sweeps together; the refinement below uses both moduli
-        start = master.shift_factors(table, float(T_ref), loss_weight=0.0)
-    else:
-        start = shifts if isinstance(shifts, master.ShiftTable) else master.read_shift_file(shifts)
-        start = master.ShiftTable.make(np.asarray(start.T), np.asarray(start.values), float(T_ref))
-        missing = [t for t in table.temperatures if not np.any(np.isclose(np.asarray(start.T), t, atol=0.51))]
-        if missing:
-            raise ValueError(f"user shift factors lack the measured temperatures {missing} C")
-        if table.n_sets < 2 and law != "table":
-            raise ValueError("a shift law needs sweeps at two or more temperatures")
+def _free_fits(table, start, nu, densities, max_iter):
+    """The earlier method: free relaxation times, the number of terms by BIC after refinement
+    (few terms, but the loss modulus may ring). Returns ({law: PronyFit}, criterion)."""
     wr = table.omega * 10.0 ** np.asarray(start.log10_aT(table.T))
     # one NNLS start per density, each refined end-to-end (table law); the number of terms is
     # chosen by BIC after the refinement (not on the linear master-curve fit, whose times are
@@ -167,19 +165,124 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
             worse += 1
             if worse >= 2:
                 break
-    crit = tuple(crit)
     # the candidates were screened with a looser tolerance: finish the chosen one
-    f_tab = prony.refine(table, f_tab.material, f_tab.shift, **opts)
+    fits = {"table": prony.refine(table, f_tab.material, f_tab.shift, **opts)}
+    for name in CLOSED_FORM:
+        guess, _ = master.fit_law(fits["table"].shift, name)
+        fits[name] = prony.refine(table, fits["table"].material, guess, **opts)
+    return fits, tuple(crit)
 
+
+def _smooth_fits(table, start, nu, per_decade, max_terms):
+    """Smooth spectrum (:mod:`fitting.spectrum`): the penalty weight chosen by GCV with the
+    per-sweep table, then WLF and Arrhenius refined end to end with that weight from the table
+    fit. Returns ({law: PronyFit}, info of the table fit).
+
+    A term cap that makes the grid coarser than one time per decade cannot give a smooth loss
+    modulus (each arm's loss peak is about a decade wide, so sparse arms show as bumps); the
+    capped frequency fit then frees the relaxation times (:func:`fitting.prony.refine`), which
+    is what keeps its error small."""
+    data = spectrum.SmoothData.from_table(table)
+    opts = dict(per_decade=per_decade, max_terms=max_terms, weights=WEIGHTS, robust=ROBUST, nu=nu)
+    # relaxation curves: the per-sweep factors stay those of the overlap (see smooth_fit)
+    f_tab, info = spectrum.smooth_fit(data, start, fit_shift=data.domain == "frequency", **opts)
     fits = {"table": f_tab}
-    todo = {"auto": ["WLF"], "WLF": ["WLF"], "Arrhenius": ["Arrhenius"], "table": []}[law]
-    for name in todo:
+    for name in CLOSED_FORM:
         guess, _ = master.fit_law(f_tab.shift, name)
-        fits[name] = prony.refine(table, f_tab.material, guess, **opts)
+        fits[name], _ = spectrum.smooth_fit(data, guess, lam=info["lam"], start=f_tab, grid=info["grid"], **opts)
+    sparse = len(info["grid"]) > 1 and (info["grid"][1] - info["grid"][0]) > 1.0
+    if sparse and data.domain == "frequency":
+        free = dict(max_iter=300, weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=TAU_MARGIN)
+        fits = {k: prony.refine(table, f.material, f.shift, **free) for k, f in fits.items()}
+        info = dict(info, free_times=True)
+    return fits, info
+
+
+def _law_distance(law, table_law, temperatures) -> dict:
+    """rms and max |log10 a_T(law) - log10 a_T(table)| over the measured temperatures (decades)."""
+    d = np.asarray(law.log10_aT(temperatures)) - np.asarray(table_law.log10_aT(temperatures))
+    return {"rms": float(np.sqrt(np.mean(d ** 2))), "max": float(np.max(np.abs(d)))}
+
+
+def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tensile=True, shifts=None,
+              drop_nonpositive=False, method="smooth", per_decade=3.0, max_terms=None,
+              densities=(0.5, 0.75, 1.0, 1.25, 1.5), max_iter=300, plots_=True, stem="material"):
+    """Calibrate a Prony material and shift law from DMA frequency sweeps or relaxation data.
+
+    Args:
+      paths: DMA file(s)/directory(ies), see :func:`fitting.dma.read`, or relaxation-modulus
+        files (:mod:`fitting.relaxation`, detected from the content).
+      T_ref: reference temperature (C); need not be a measured one.
+      out_dir: if given, writes ``<stem>.json`` and the plots there (atomically).
+      law: 'WLF', 'Arrhenius', 'table' or 'auto' (lowest BIC of the three). WLF and Arrhenius
+        are always fitted; the ones not chosen are reported as alternatives.
+      nu: Poisson's ratio stored in the material (and used for G -> E).
+      kind: override 'E'/'G' from the files. tensile: convert shear data to E.
+      shifts: user shift factors (a :class:`fitting.master.ShiftTable` or a CSV path with
+        T [C], log10 a_T); used as the start instead of the data overlap.
+      method: 'smooth' (relaxation times on a fixed grid at ``per_decade``, smoothness penalty
+        chosen by GCV: a loss modulus without ringing, :mod:`fitting.spectrum`) or 'free'
+        (free relaxation times, their number by BIC: fewer terms; frequency data only).
+      max_terms: cap on the number of Prony terms ('smooth': the grid gets coarser).
+      densities: relaxation times per decade tried by the BIC of method 'free'.
+    Returns ``(Material, shift, Report)``; the material's moduli are in Pa (tensile E unless
+    the data are shear and ``tensile=False``), times in s, at T_ref.
+    """
+    t0 = time.perf_counter()
+    if law not in ("auto", "WLF", "Arrhenius", "table"):
+        raise ValueError(f"law must be 'auto', 'WLF', 'Arrhenius' or 'table', got {law!r}")
+    if method not in ("smooth", "free"):
+        raise ValueError(f"method must be 'smooth' or 'free', got {method!r}")
+    if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 3):
+        raise ValueError(f"max_terms must be an integer >= 3, got {max_terms!r}")
+    if method == "free" and max_terms is not None:
+        raise ValueError("max_terms applies to method 'smooth' (method 'free' chooses its terms by BIC)")
+    if not (isinstance(T_ref, (int, float)) and math.isfinite(T_ref)):
+        raise ValueError(f"T_ref must be a finite temperature in C, got {T_ref!r}")
+    _checks.poisson("nu", nu)    # before reading and fitting, not when the material is built
+    if relaxation.is_relaxation(paths):
+        table = relaxation.read(paths, kind=kind, drop_nonpositive=drop_nonpositive)
+        if method == "free":
+            raise ValueError("method 'free' fits frequency sweeps; relaxation data use method 'smooth'")
+    else:
+        table = dma.read(paths, kind=kind, drop_nonpositive=drop_nonpositive)
+    if shifts is None:
+        # pair shifts from the storage modulus alone (as pyvisco does): in the glassy range the
+        # loss often follows a secondary relaxation that does not superpose with the same a_T,
+        # and would pin the cold sweeps together; the refinement below uses both moduli
+        start = master.shift_factors(table.as_rate_table() if table.domain == "time" else table, float(T_ref),
+                                     loss_weight=0.0)
+    else:
+        start = shifts if isinstance(shifts, master.ShiftTable) else master.read_shift_file(shifts)
+        start = master.ShiftTable.make(np.asarray(start.T), np.asarray(start.values), float(T_ref))
+        missing = [t for t in table.temperatures if not np.any(np.isclose(np.asarray(start.T), t, atol=0.51))]
+        if missing:
+            raise ValueError(f"user shift factors lack the measured temperatures {missing} C")
+        if table.n_sets < 2 and law != "table":
+            raise ValueError("a shift law needs sweeps at two or more temperatures")
+    if method == "smooth":
+        fits, info = _smooth_fits(table, start, nu, per_decade, max_terms)
+        crit = tuple(info["gcv"])
+        smoothing = {"criterion": "GCV", "lam": info["lam"], "per_decade": per_decade,
+                     "effective_parameters": info["edf"], "free_times": info.get("free_times", False)}
+    else:
+        fits, crit = _free_fits(table, start, nu, densities, max_iter)
+        smoothing = None
     chosen = law if law != "auto" else min(fits, key=lambda k: fits[k].bic)
     fit = fits[chosen]
     mat, shift = fit.material, fit.shift
-    errors = prony.raw_errors(mat, shift, table)
+    errors = table.errors(mat, shift)
+    rate = table.omega if table.domain == "frequency" else 1.0 / table.t
+    wr = rate * 10.0 ** np.asarray(shift.log10_aT(table.T))
+    errors["loss_extrema"] = spectrum.loss_extrema(mat, float(wr.min()), float(wr.max()))
+    alternatives = {}
+    for name in CLOSED_FORM:
+        if name != chosen:
+            f = fits[name]
+            alternatives[name] = dict(io._shift_to_dict(f.shift), sigma=dict(_law_sigma(f.sigma)),
+                                      errors=table.errors(f.material, f.shift), bic=f.bic,
+                                      delta_log10_aT_vs_table=_law_distance(f.shift, fits["table"].shift,
+                                                                            table.temperatures))
     sigma = dict(fit.sigma)
     out_kind = table.kind
     if table.kind == "G" and tensile:
@@ -193,16 +296,21 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
                     candidates=[{"law": k, "bic": v.bic, "rms": v.rms, "terms": v.terms} for k, v in fits.items()],
                     n_points=len(table), n_sets=table.n_sets, kind=table.kind, T_ref=float(T_ref),
                     wall_time=0.0, iterations=fit.iterations, converged=fit.converged, dropped=table.dropped,
-                    data_shift=f_tab.shift, criterion=crit)
+                    data_shift=fits["table"].shift, criterion=crit, method=method, domain=table.domain,
+                    alternatives=alternatives, smoothing=smoothing,
+                    laws={k: fits[k].shift for k in CLOSED_FORM})
     if out_dir is not None:
         os.makedirs(out_dir, exist_ok=True)
         jpath = os.path.join(out_dir, f"{stem}.json")
-        io.save_material(jpath, mat, shift, modulus=out_kind, uncertainty=sigma,
-                         fit={"errors": errors, "terms": fit.terms, "law": chosen, "data_kind": table.kind,
-                              "files": list(table.files), "points": len(table)})
+        report.save(jpath, mat, shift, out_kind, files=list(table.files))
         report.outputs.append(jpath)
         if plots_:
             # plots show the data in their own modulus, hence the fitted (unconverted) material
-            report.outputs += plots.save_all(out_dir, stem, table, fit.material, shift, f_tab.shift)
+            report.outputs += plots.save_all(out_dir, stem, table, fit.material, shift, fits["table"].shift,
+                                             report.laws)
     report.wall_time = time.perf_counter() - t0
     return mat, shift, report
+
+
+def _law_sigma(sigma):
+    return {k: v for k, v in sigma.items() if k in ("C1", "C2", "Ea")}

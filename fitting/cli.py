@@ -1,5 +1,10 @@
 """``vjax-fit INPUT... --tref T --out material.json``: calibrate a material from DMA files.
 
+Frequency sweeps or relaxation curves (detected from the content). By default the Prony
+spectrum is smooth (``--method smooth``: fixed log-spaced times, penalty chosen by GCV) and
+WLF and Arrhenius are fitted next to the chosen law (``shift_alternatives`` in the JSON, which
+``vjax-fit-torque`` and ``vjax-export --shift-law`` use); ``--max-terms N`` caps the terms.
+
 Prints a summary table (terms, errors, shift parameters, time), writes the material JSON
 atomically and the plots next to it (``<out stem>_master.png`` etc.). Exit codes: 0 success,
 1 bad data or failed fit (message on stderr), 2 bad command line. An existing output is
@@ -23,7 +28,13 @@ def _parser():
     p.add_argument("--tref", type=float, required=True, help="reference temperature (C)")
     p.add_argument("--out", required=True, help="output material JSON path")
     p.add_argument("--law", default="auto", choices=["auto", "WLF", "Arrhenius", "table"],
-                   help="shift law (auto: lowest BIC of WLF and table)")
+                   help="shift law (auto: lowest BIC of table, WLF and Arrhenius; the others are fitted too and "
+                        "written as shift_alternatives)")
+    p.add_argument("--method", default="smooth", choices=["smooth", "free"],
+                   help="smooth: relaxation times on a fixed grid, smoothness penalty chosen by GCV (a loss modulus "
+                        "without ringing; default); free: free relaxation times, their number by BIC (fewer terms)")
+    p.add_argument("--max-terms", type=int, default=None, metavar="N",
+                   help="at most N Prony terms (smooth method; Abaqus users often keep <= 13)")
     p.add_argument("--nu", type=float, default=0.5, help="Poisson's ratio (default 0.5)")
     p.add_argument("--kind", choices=["E", "G"], help="override tensile/shear from the files")
     p.add_argument("--shear", action="store_true", help="keep shear moduli (no G -> E conversion)")
@@ -64,6 +75,10 @@ def main(argv=None) -> int:
     p = _parser()
     args = p.parse_args(argv)
     problem = export_cli.check_arguments(args, fit=True) if args.export else None
+    if args.max_terms is not None and args.max_terms < 3:
+        problem = f"--max-terms must be an integer >= 3, got {args.max_terms}"
+    elif args.max_terms is not None and args.method == "free":
+        problem = "--max-terms applies to --method smooth"
     if problem:
         p.print_usage(sys.stderr)
         print(f"vjax-fit: error: {problem}", file=sys.stderr)
@@ -80,22 +95,22 @@ def main(argv=None) -> int:
     try:
         mat, shift, rep = calibrate(args.inputs, args.tref, None, law=args.law, nu=args.nu, kind=args.kind,
                                     tensile=not args.shear, shifts=args.shifts,
-                                    drop_nonpositive=args.drop_nonpositive)
+                                    drop_nonpositive=args.drop_nonpositive, method=args.method,
+                                    max_terms=args.max_terms)
         kind = "E" if (rep.kind == "E" or not args.shear) else "G"
-        io.save_material(out, mat, shift, modulus=kind, uncertainty=rep.uncertainty,
-                         fit={"errors": rep.errors, "terms": rep.terms, "law": rep.law, "data_kind": rep.kind,
-                              "points": rep.n_points, "inputs": list(args.inputs)})
+        rep.save(out, mat, shift, kind, inputs=list(args.inputs))
         written = [out]
         if not args.no_plots:
-            from . import dma
-            table = dma.read(args.inputs, kind=args.kind, drop_nonpositive=args.drop_nonpositive)
+            from . import dma, relaxation
+            reader = relaxation if rep.domain == "time" else dma
+            table = reader.read(args.inputs, kind=args.kind, drop_nonpositive=args.drop_nonpositive)
             stem = os.path.splitext(out)[0]
             fit_mat = mat
             if rep.kind == "G" and kind == "E":  # plot against the data's own modulus
                 from .calibration import convert_modulus, tensile_over_shear
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += plots.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
-                                      rep.data_shift)
+                                      rep.data_shift, rep.laws)
     except (ValueError, OSError) as e:
         print(f"vjax-fit: error: {e}", file=sys.stderr)
         return 1

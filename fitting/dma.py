@@ -79,8 +79,15 @@ class DMATable:
     dropped: int = 0
     files: tuple = ()
 
+    domain = "frequency"     # (relaxation data: fitting.relaxation.RelaxationTable, domain 'time')
+
     def __len__(self) -> int:
         return len(self.f)
+
+    def errors(self, material, shift) -> dict:
+        """Errors of ``material`` with ``shift`` on these raw points (:func:`fitting.prony.raw_errors`)."""
+        from .prony import raw_errors
+        return raw_errors(material, shift, self)
 
     @property
     def temperatures(self) -> np.ndarray:
@@ -400,7 +407,8 @@ def _convert(block: _Block, kind_override):
         missing.insert(0, "frequency (f [Hz] or omega [rad/s])")
     if missing:
         raise DMAFormatError(path, block.header_line,
-                             f"missing column(s): {', '.join(missing)}; found {block.names}")
+                             f"missing column(s): {', '.join(missing)}; found {block.names} (relaxation data "
+                             "need a time column t [s] and a relaxation modulus E_relax [MPa]: fitting.relaxation)")
     data = np.asarray(block.rows, float).reshape(len(block.rows), len(block.names))
     lines = np.asarray(block.lines)
     line = block.header_line

@@ -7,7 +7,13 @@ Schema (temperatures in C, moduli in Pa, times in s)::
      "shift": {"law": "WLF", "C1": 8.86, "C2": 101.6, "T_ref": 25.0}
             | {"law": "Arrhenius", "Ea": 2.0e5, "T_ref": 25.0}
             | {"law": "table", "T": [...], "log10_aT": [...], "T_ref": 25.0},
+     "shift_alternatives": {"WLF": {"C1": ..., "C2": ..., "T_ref": 25.0, "sigma": {...},
+                                    "errors": {...}, "delta_log10_aT_vs_table": {"rms", "max"}},
+                            "Arrhenius": {...}},  # optional: closed-form laws fitted as well
      "uncertainty": {...}, "fit": {...}}          # optional, informative only
+
+:func:`closed_form_shift` returns one of the alternatives (e.g. the WLF law that
+``vjax-fit-torque`` refines when the material's own law is a table).
 
 Writes are atomic: the JSON goes to a temporary file in the target directory, is flushed
 and fsync'ed, then ``os.replace``'d over the target, so a reader never sees half a file.
@@ -25,7 +31,7 @@ from vjax.material import Arrhenius, Material, WLF
 from .files import write_atomic as atomic_write
 from .master import ShiftTable
 
-__all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict"]
+__all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict", "closed_form_shift"]
 
 
 def _shift_to_dict(shift) -> dict:
@@ -52,13 +58,16 @@ def _clean(o):
     return o
 
 
-def material_to_dict(material: Material, shift, modulus: str = "E", uncertainty=None, fit=None) -> dict:
+def material_to_dict(material: Material, shift, modulus: str = "E", uncertainty=None, fit=None,
+                     shift_alternatives=None) -> dict:
     """The JSON object of the module docstring."""
     if modulus not in ("E", "G"):
         raise ValueError(f"modulus must be 'E' or 'G', got {modulus!r}")
     d = {"kind": "prony", "E0": float(material.E0), "moduli": [float(v) for v in np.asarray(material.moduli)],
          "times": [float(v) for v in np.asarray(material.times)], "nu": float(material.nu),
          "modulus": modulus, "shift": _shift_to_dict(shift)}
+    if shift_alternatives:
+        d["shift_alternatives"] = _clean(shift_alternatives)
     if uncertainty:
         d["uncertainty"] = _clean(uncertainty)
     if fit:
@@ -66,11 +75,13 @@ def material_to_dict(material: Material, shift, modulus: str = "E", uncertainty=
     return d
 
 
-def save_material(path, material: Material, shift, modulus: str = "E", uncertainty=None, fit=None) -> None:
+def save_material(path, material: Material, shift, modulus: str = "E", uncertainty=None, fit=None,
+                  shift_alternatives=None) -> None:
     """Save ``material`` (a Prony :class:`vjax.Material`, moduli in Pa) and its shift law
     to ``path`` as JSON, atomically. ``modulus`` says whether the moduli are tensile (E) or
     shear (G)."""
-    atomic_write(path, json.dumps(material_to_dict(material, shift, modulus, uncertainty, fit), indent=2) + "\n")
+    d = material_to_dict(material, shift, modulus, uncertainty, fit, shift_alternatives)
+    atomic_write(path, json.dumps(d, indent=2) + "\n")
 
 
 def _need(d, key, where):
@@ -111,13 +122,31 @@ def material_from_dict(d: dict, where: str = "material"):
     return mat, shift, modulus
 
 
-def load_material(path):
-    """Load a material JSON file; returns ``(Material, shift, modulus)`` with modulus 'E' or
-    'G'. Raises ValueError naming the file for malformed content."""
+def _read_json(path) -> dict:
     path = os.fspath(path)
     with open(path, encoding="utf-8") as fh:
         try:
-            d = json.load(fh)
+            return json.load(fh)
         except json.JSONDecodeError as e:
             raise ValueError(f"{path}, line {e.lineno}: invalid JSON ({e.msg})") from None
-    return material_from_dict(d, where=path)
+
+
+def closed_form_shift(path, law: str = "WLF"):
+    """The ``law`` ('WLF' or 'Arrhenius') of a material JSON file: its own shift law if it is
+    that law, else the alternative fitted with it (``shift_alternatives``). Raises ValueError
+    naming the file when it carries neither."""
+    d = _read_json(path)
+    own = (d.get("shift") or {}).get("law")
+    if own == law:
+        return material_from_dict(d, where=os.fspath(path))[1]
+    alt = (d.get("shift_alternatives") or {}).get(law)
+    if not isinstance(alt, dict):
+        raise ValueError(f"{os.fspath(path)}: the shift law is {own!r} and the file carries no fitted {law} "
+                         f"alternative; refit with vjax-fit (which fits WLF and Arrhenius as well) or --law {law}")
+    return material_from_dict(dict(d, shift=dict(alt, law=law)), where=os.fspath(path))[1]
+
+
+def load_material(path):
+    """Load a material JSON file; returns ``(Material, shift, modulus)`` with modulus 'E' or
+    'G'. Raises ValueError naming the file for malformed content."""
+    return material_from_dict(_read_json(path), where=os.fspath(path))

@@ -18,7 +18,7 @@ import numpy as np  # noqa: E402
 
 from . import files  # noqa: E402
 
-__all__ = ["master_curve", "shift_factors", "residuals", "spectrum", "temperature_sweep", "van_gurp_palmen",
+__all__ = ["master_curve", "relaxation_curve", "shift_factors", "residuals", "spectrum", "temperature_sweep", "van_gurp_palmen",
            "save_all", "torque_fit", "moduli"]
 
 
@@ -70,12 +70,13 @@ def master_curve(table, material, shift, path=None):
     return _save(fig, path)
 
 
-def shift_factors(data_shift, shift, path=None):
+def shift_factors(data_shift, shift, path=None, laws=None):
     """log10 a_T per sweep (``data_shift``, a ShiftTable estimated from the data or refined)
     with the material's shift law and both closed-form laws: the material's own WLF or
-    Arrhenius, the other one (or both, for a table law) fitted to the per-sweep factors
-    (:func:`fitting.master.fit_law`, rms misfit in the legend). The legend says which law the
-    material uses."""
+    Arrhenius, the other one (or both, for a table law) from ``laws`` ({'WLF': law, ...}, e.g.
+    fitted end to end by :func:`fitting.calibrate`) or else fitted to the per-sweep factors
+    (:func:`fitting.master.fit_law`); the legend gives each one's rms distance from the table
+    and says which law the material uses."""
     from .master import fit_law
     T, values = np.asarray(data_shift.T, float), np.asarray(data_shift.values, float)
     if T.size == 0 or T.shape != values.shape or not (np.all(np.isfinite(T)) and np.all(np.isfinite(values))):
@@ -90,6 +91,10 @@ def shift_factors(data_shift, shift, path=None):
             fitted, note = shift, "the material's law"
         elif law == "table":
             continue
+        elif laws and law in laws:
+            fitted = laws[law]
+            rms = float(np.sqrt(np.mean((np.asarray(fitted.log10_aT(T)) - values) ** 2)))
+            note = f"fitted end to end, rms {rms:.3f} dec from the table"
         else:
             fitted, rms = fit_law(data_shift, law)
             note = f"fitted to the table, rms {rms:.3f} dec"
@@ -214,12 +219,35 @@ def spectrum(material, path=None):
     return _save(fig, path)
 
 
-def save_all(out_dir, stem, table, material, shift, data_shift) -> list:
+def relaxation_curve(table, material, shift, path=None):
+    """Relaxation data (a :class:`fitting.relaxation.RelaxationTable`) against reduced time
+    t / a_T, coloured by temperature, with the fitted E(t) at T_ref."""
+    tr = table.t / 10.0 ** np.asarray(shift.log10_aT(table.T))
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    sc = ax.scatter(tr, table.modulus, c=table.T, s=9, cmap="coolwarm")
+    t = np.logspace(np.log10(tr.min()) - 0.5, np.log10(tr.max()) + 0.5, 400)
+    ax.plot(t, _eval(material, "relaxation", t), "k-", lw=1.2, label=f"Prony, {material.moduli.shape[0]} terms")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"reduced time $t / a_T$ (s)")
+    ax.set_ylabel(f"relaxation modulus {table.kind}(t) (Pa)")
+    ax.legend()
+    fig.colorbar(sc, ax=ax, label="T (C)")
+    ax.set_title(f"relaxation master curve at T_ref = {float(shift.T_ref):g} C", fontsize=10)
+    return _save(fig, path)
+
+
+def save_all(out_dir, stem, table, material, shift, data_shift, laws=None) -> list:
     """Write the plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
     ``_spectrum.png``, ``_tsweep.png`` (E', E'', tan delta versus T at 1 and 10 Hz) and
-    ``_vgp.png`` (van Gurp-Palmen) in ``out_dir``; returns their paths."""
+    ``_vgp.png`` (van Gurp-Palmen) in ``out_dir``; returns their paths. Relaxation data get
+    ``_master.png`` (:func:`relaxation_curve`), ``_shift.png`` and ``_spectrum.png``.
+    ``laws``: the closed-form laws for the shift plot (see :func:`shift_factors`)."""
     p = lambda s: os.path.join(out_dir, f"{stem}_{s}.png")
-    return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift")),
+    if getattr(table, "domain", "frequency") == "time":
+        return [relaxation_curve(table, material, shift, p("master")),
+                shift_factors(data_shift, shift, p("shift"), laws), spectrum(material, p("spectrum"))]
+    return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift"), laws),
             residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum")),
             temperature_sweep(table, material, shift, (1.0, 10.0), p("tsweep")),
             van_gurp_palmen(table, material, shift, p("vgp"))]

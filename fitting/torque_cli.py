@@ -2,7 +2,8 @@
 against measured bearing friction torque.
 
 DATA.csv: torque-versus-speed curves (format in :mod:`fitting.torque`). The start material
-(a ``vjax-fit`` JSON: Prony series with a WLF shift law; shear moduli are converted to
+(a ``vjax-fit`` JSON: Prony series with a WLF shift law, or with another law and the WLF
+alternative ``vjax-fit`` fits next to it, which is then used; shear moduli are converted to
 E = 2 (1 + nu) G, as are shear DMA files) is refined by gradients through
 the bearing solves (:func:`fitting.torque.fit_torque`: Adam, then Levenberg-Marquardt),
 optionally with the misfit to DMA files as a second term so it stays consistent with them.
@@ -113,6 +114,8 @@ def main(argv=None) -> int:
     jax.config.update("jax_enable_x64", True)
     jax_cache.enable(args.no_cache)
     import numpy as np
+    from vjax.material import WLF
+
     from . import io, plots
     from . import torque as ft
 
@@ -120,6 +123,10 @@ def main(argv=None) -> int:
     try:
         data = ft.read_torque_csv(args.data)
         material, shift, modulus = io.load_material(args.material)
+        if not isinstance(shift, WLF):     # e.g. vjax-fit's table law: refine its fitted WLF alternative
+            shift = io.closed_form_shift(args.material, "WLF")
+            print(f"vjax-fit-torque: the start material's shift law is not WLF; refining the WLF law fitted with "
+                  f"it (C1 = {float(shift.C1):.5g}, C2 = {float(shift.C2):.5g} K)", file=sys.stderr)
         table = None
         if args.dma:
             from . import dma
