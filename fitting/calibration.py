@@ -200,7 +200,7 @@ def _smooth_fits(table, start, nu, per_decade, max_terms):
 
 def _law_distance(law, table_law, temperatures) -> dict:
     """rms and max |log10 a_T(law) - log10 a_T(table)| over the measured temperatures (decades)."""
-    d = np.asarray(law.log10_aT(temperatures)) - np.asarray(table_law.log10_aT(temperatures))
+    d = np.asarray(spectrum._log10_aT(law, temperatures)) - np.asarray(spectrum._log10_aT(table_law, temperatures))
     return {"rms": float(np.sqrt(np.mean(d ** 2))), "max": float(np.max(np.abs(d)))}
 
 
@@ -273,7 +273,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     mat, shift = fit.material, fit.shift
     errors = table.errors(mat, shift)
     rate = table.omega if table.domain == "frequency" else 1.0 / table.t
-    wr = rate * 10.0 ** np.asarray(shift.log10_aT(table.T))
+    wr = rate * 10.0 ** np.asarray(spectrum._log10_aT(shift, table.T))
     errors["loss_extrema"] = spectrum.loss_extrema(mat, float(wr.min()), float(wr.max()))
     alternatives = {}
     for name in CLOSED_FORM:

@@ -260,9 +260,13 @@ def _solve(x0, active, data, *, kind, K, max_iter, robust, ftol):
 
 def log_residual(material: Material, shift, table: DMATable):
     """log10(model/measured) for storage then loss on the raw points of ``table`` (length 2N)."""
-    aT = 10.0 ** shift.log10_aT(jnp.asarray(table.T))
-    E = material.modulus(jnp.asarray(table.omega) * aT)
-    return jnp.concatenate([jnp.log10(E.real / table.storage), jnp.log10(E.imag / table.loss)])
+    return _log_residual(material, shift, *(jnp.asarray(a) for a in (table.T, table.omega, table.storage, table.loss)))
+
+
+@jax.jit
+def _log_residual(material, shift, T, omega, storage, loss):
+    E = material.modulus(omega * 10.0 ** shift.log10_aT(T))
+    return jnp.concatenate([jnp.log10(E.real / storage), jnp.log10(E.imag / loss)])
 
 
 def raw_errors(material: Material, shift, table: DMATable) -> dict:

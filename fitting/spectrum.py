@@ -25,7 +25,8 @@ Choice of lam: generalized cross-validation (Craven and Wahba 1979; Golub, Heath
 
 with J the Jacobian of the n data residuals and D the second-difference operator on the log
 moduli; tr H is the effective number of parameters. lam runs down a log grid from 1e3 (each
-solve warm-started from the previous one) and the minimum of GCV is kept. Residuals of DMA
+solve warm-started from the previous one, stopping two steps past the minimum) and the
+minimum of GCV is kept. Residuals of DMA
 data are correlated (the model error of a master curve is smooth), and GCV then tends to
 under-smooth; so the chosen lam is the GCV minimum unless its loss modulus has more than
 ``max_extrema`` local extrema over the data range (one loss peak plus a secondary relaxation
@@ -49,7 +50,18 @@ from .prony import LN10, PronyFit, _law_eval, _law_spec, _robust
 
 __all__ = ["count_extrema", "loss_extrema", "SmoothData", "smooth_fit", "LAMBDAS"]
 
-LAMBDAS = tuple(10.0 ** np.arange(3.0, -5.01, -0.5))
+LAMBDAS = tuple(10.0 ** np.arange(3.0, -6.01, -1.0))
+_SAMPLES = 4096      # loss-modulus samples of loss_extrema: >= 100 per decade over 40 decades
+
+
+@jax.jit
+def _loss_curve(material, log10_w):
+    return material.modulus(10.0 ** log10_w).imag
+
+
+@jax.jit
+def _log10_aT(law, T):
+    return law.log10_aT(T)
 
 
 def count_extrema(y) -> int:
@@ -60,14 +72,15 @@ def count_extrema(y) -> int:
     return int(np.count_nonzero(d[1:] != d[:-1]))
 
 
-def loss_extrema(material: Material, omega_min: float, omega_max: float, per_decade: int = 200) -> int:
+def loss_extrema(material: Material, omega_min: float, omega_max: float) -> int:
     """Local extrema of the loss modulus E''(omega) of ``material`` between ``omega_min`` and
-    ``omega_max`` (rad/s, reduced), sampled at ``per_decade`` points per decade."""
+    ``omega_max`` (rad/s, reduced), sampled at 4096 log-spaced points (>= 100 per decade up
+    to 40 decades; more beyond)."""
     if not (0 < omega_min < omega_max):
         raise ValueError(f"need 0 < omega_min < omega_max, got {omega_min!r}, {omega_max!r}")
-    n = max(int(per_decade * math.log10(omega_max / omega_min)), 3)
-    w = np.logspace(math.log10(omega_min), math.log10(omega_max), n)
-    return count_extrema(np.asarray(material.modulus(jnp.asarray(w)).imag))
+    decades = math.log10(omega_max / omega_min)
+    n = _SAMPLES if decades <= 40 else int(100 * decades) + 1
+    return count_extrema(np.asarray(_loss_curve(material, np.linspace(math.log10(omega_min), math.log10(omega_max), n))))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -167,7 +180,8 @@ def _grid(lo, hi, per_decade, max_terms):
 
 def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: float = 1.0,
                max_terms: int | None = None, lam=None, lambdas=LAMBDAS, max_extrema: int = 3,
-               weights=(1.0, 1.0), robust: float = math.inf, start=None, grid=None, fit_shift: bool = True, max_iter: int = 400, ftol: float = 1e-9, nu: float = 0.5):
+               weights=(1.0, 1.0), robust: float = math.inf, start=None, grid=None, fit_shift: bool = True,
+               max_iter: int = 400, ftol: float = 1e-9, nu: float = 0.5):
     """Smooth-spectrum Prony fit of ``data`` with the shift law ``shift`` refined end to end.
 
     Args:
@@ -183,8 +197,10 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         default grid (e.g. the one of an earlier fit). fit_shift: False holds the shift law
         fixed (a table of relaxation curves: a sweep on a plateau carries no information on
         its own shift, and a free factor would drift along it).
-    Returns ``(PronyFit, info)`` with info: lam, gcv table [(lam, GCV, edf, rms, extrema)],
-    log10 tau grid, effective parameters.
+    Returns ``(PronyFit, info)``; the fit's relaxation times are the grid (their sigma 0).
+    info: 'lam' (chosen weight), 'grid' (log10 tau), 'edf' (effective parameters tr H),
+    'extrema' (of E'' over the data), 'gcv': rows (lam, GCV, edf, rms, extrema, LM iterations,
+    converged) of every weight tried.
     """
     if data.domain not in ("frequency", "time"):
         raise ValueError(f"domain must be 'frequency' or 'time', got {data.domain!r}")
@@ -195,7 +211,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     kind, p_law0, physical, sig, c2min = _law_spec(shift, Tsets, T_ref, float(Tsets.min()))
     u = data.log_rate()
     scale = float(np.median(data.y1))
-    ur = u + LN10 * np.asarray(shift.log10_aT(jnp.asarray(data.T)))     # ln reduced rate
+    ur = u + LN10 * np.asarray(_log10_aT(shift, data.T))     # ln reduced rate
     if grid is None:
         grid = _grid(-ur.max() / LN10 - margin, -ur.min() / LN10 + margin, per_decade, max_terms)
     grid = np.asarray(grid, float)
@@ -254,9 +270,13 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         x, sol, best = run(float(lam), x)
         table.append(best)
     else:
-        for lam_ in lambdas:
+        rises = 0
+        for lam_ in lambdas:     # large to small, warm-started; stop two steps past the minimum
             x, sol, row = run(lam_, x)
             table.append(row)
+            rises = rises + 1 if row["gcv"] > min(r["gcv"] for r in table) else 0
+            if rises == 2:
+                break
         ok = [row for row in table if row["extrema"] <= max_extrema]
         gmin = min(table, key=lambda row: row["gcv"])
         if gmin["extrema"] <= max_extrema or not ok:
@@ -279,7 +299,8 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     bic = m * math.log(float(np.sum(r ** 2)) / m) + p_eff * math.log(m)
     fit = PronyFit(mat, law, sigma, best["rms"], m, bic, best["iterations"], best["converged"])
     info = dict(lam=best["lam"], grid=grid, edf=p_eff, extrema=best["extrema"],
-                gcv=[(row["lam"], row["gcv"], row["edf"], row["rms"], row["extrema"], row["iterations"], row["converged"]) for row in table])
+                gcv=[tuple(row[k] for k in ("lam", "gcv", "edf", "rms", "extrema", "iterations", "converged"))
+                     for row in table])
     return fit, info
 
 

@@ -158,3 +158,13 @@ def test_file_that_is_neither_frequency_nor_relaxation_data(tmp_path):
     p.write_text("t [s],strain [-],T [C]\n1,0.01,20\n2,0.011,20\n")
     with pytest.raises(dma.DMAFormatError, match="relaxation data need a time column"):
         calibrate(str(p), 20.0)
+
+
+def test_cli_term_cap_and_method_arguments(tmp_path, capsys):
+    from fitting.cli import main as fit_main
+    out = str(tmp_path / "m.json")
+    assert fit_main([PYVISCO, "--tref", "25", "--out", out, "--max-terms", "2"]) == 2
+    assert "--max-terms must be an integer >= 3, got 2" in capsys.readouterr().err
+    assert fit_main([PYVISCO, "--tref", "25", "--out", out, "--max-terms", "8", "--method", "free"]) == 2
+    assert "--max-terms applies to --method smooth" in capsys.readouterr().err
+    assert not os.path.exists(out)
