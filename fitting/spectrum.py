@@ -246,7 +246,6 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     D = np.zeros((K - 2, len(on)))
     for i in range(K - 2):
         D[i, 1 + i:4 + i] = (1.0, -2.0, 1.0)
-    wr_lo, wr_hi = math.exp(ur.min()), math.exp(ur.max())
 
     def run(lam_, x0):
         sol = _solve(jnp.asarray(x0), jnp.asarray(active), base + (jnp.asarray(math.sqrt(lam_)),),
@@ -261,8 +260,9 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         m = len(live)
         mat = _material(xs, K, scale, grid, nu)
         # extrema over the reduced range of the data under the fitted law
+        wr = np.exp(u + LN10 * np.asarray(_log10_aT(physical(xs[Kp + 1:Kp + 1 + len(p_law0)]), data.T)))
         return xs, sol, dict(lam=lam_, gcv=m * rss / max(m - edf, 1.0) ** 2, edf=edf, rms=math.sqrt(rss / m),
-                             extrema=loss_extrema(mat, wr_lo, wr_hi),
+                             extrema=loss_extrema(mat, wr.min(), wr.max()),
                              x=xs, iterations=int(sol.iterations), converged=bool(sol.converged), J=J, r=r)
 
     table = []
