@@ -6,7 +6,9 @@
 >>> print(report.table())                                                      # doctest: +SKIP
 
 Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF/Arrhenius),
-:mod:`fitting.prony` (Prony fit and refinement), :mod:`fitting.calibration` (the whole chain),
+:mod:`fitting.prony` (Prony fit with free times, refinement), :mod:`fitting.spectrum` (smooth
+spectra: fixed times, penalty chosen by GCV; the loss-modulus extrema counter),
+:mod:`fitting.relaxation` (relaxation data E(t)), :mod:`fitting.calibration` (the whole chain),
 :mod:`fitting.io` (material JSON), :mod:`fitting.files` (atomic writes),
 :mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``), :mod:`fitting.eplexor` (Netzsch
 Eplexor .xls), :mod:`fitting.export` and :mod:`fitting.export_cli` (``vjax-export``: Abaqus,

@@ -1,18 +1,20 @@
 """One-call calibration: DMA files -> Prony material + shift law (+ JSON and plots).
 
-:func:`calibrate` chains the steps of :mod:`fitting.dma`, :mod:`fitting.master` and
-:mod:`fitting.prony`:
+:func:`calibrate` chains the steps of :mod:`fitting.dma` (or :mod:`fitting.relaxation`),
+:mod:`fitting.master`, :mod:`fitting.spectrum` and :mod:`fitting.prony`:
 
-1. read the files (:func:`fitting.dma.read`);
-2. shift factors per sweep from the overlap of the storage curves (or the user's table);
-3. Prony starts on the master curve (NNLS, one per density of relaxation times), each refined
-   end-to-end on the raw data with a per-sweep shift table; the number of terms is the
-   candidate with the lowest BIC after refinement;
-4. (the refinement weights storage 3:1 over loss, uses a Cauchy loss of scale 0.03 decades and
-   keeps the relaxation times within half a decade of the data, see the constants below);
-5. WLF and/or Arrhenius fitted to the refined table and refined end-to-end again;
+1. read the files: frequency sweeps, or relaxation curves E(t) (detected from the header);
+2. shift factors per sweep from the overlap of the storage (or E(t)) curves, or the user's table;
+3. method 'smooth' (default, :func:`fitting.spectrum.smooth_fit`): relaxation times fixed on a
+   grid at 3 per decade, a second-difference penalty on ln E_k whose weight generalized
+   cross-validation chooses, refined end to end on the raw data with the per-sweep table;
+   method 'free': NNLS starts at several densities refined with free times
+   (:func:`fitting.prony.refine`), the number of terms by BIC after refinement;
+4. both weight storage 5:1 over loss and use a Cauchy loss of scale 0.03 decades (constants
+   below);
+5. WLF and Arrhenius are always fitted as well, starting from the refined table, end to end;
 6. with ``law="auto"`` the candidate with the lowest BIC on the raw data wins (a table costs
-   one parameter per sweep, WLF two);
+   one parameter per sweep, WLF two); the others are reported as alternatives;
 7. shear data are converted to tensile with E = 2 (1 + nu) G when ``tensile=True``.
 """
 from __future__ import annotations
@@ -31,10 +33,11 @@ from . import dma, io, master, plots, prony, relaxation, spectrum
 
 __all__ = ["calibrate", "Report"]
 
-# refinement settings (see :func:`fitting.prony.refine`): storage counts three times as much as
-# loss (the smoother, better-superposing half of DMA data), Cauchy loss with scale 0.03 decades
-# (7%: a few inconsistent points, typically loss near the glassy plateau, do not bend the
-# fit), relaxation times within half a decade of the data range (E0 stays physical)
+# refinement settings (see :func:`fitting.prony.refine` and :func:`fitting.spectrum.smooth_fit`):
+# storage counts five times as much as loss (the smoother, better-superposing half of DMA data),
+# Cauchy loss with scale 0.03 decades (7%: a few inconsistent points, typically loss near the
+# glassy plateau, do not bend the fit); method 'free' keeps the relaxation times within the
+# data range (E0 stays physical)
 WEIGHTS = (5.0, 1.0)
 ROBUST = 0.03
 FTOL = 1e-5

@@ -89,14 +89,9 @@ class DMATable:
         from .prony import raw_errors
         return raw_errors(material, shift, self)
 
-    @property
-    def temperatures(self) -> np.ndarray:
-        """Nominal temperature of each set (C), increasing."""
-        return np.array([self.T[self.set == s][0] for s in range(self.n_sets)])
-
-    @property
-    def n_sets(self) -> int:
-        return int(self.set.max()) + 1 if len(self.set) else 0
+    temperatures = property(lambda self: set_temperatures(self.T, self.set),
+                            doc="Nominal temperature of each set (C), increasing.")
+    n_sets = property(lambda self: int(self.set.max()) + 1 if len(self.set) else 0, doc="Number of sets.")
 
     def subset(self, mask) -> "DMATable":
         """The points where ``mask`` is true (sets renumbered)."""
@@ -112,6 +107,11 @@ class DMATable:
         return (f"{len(self)} points of {self.kind}', {self.kind}'' in {self.n_sets} sweeps, "
                 f"T = {self.T.min():.4g}..{self.T.max():.4g} C, f = {self.f.min():.3g}..{self.f.max():.3g} Hz"
                 + (f", {self.dropped} non-positive points dropped" if self.dropped else ""))
+
+
+def set_temperatures(T, setid) -> np.ndarray:
+    """Nominal temperature of each set 0..max(setid) (C), from per-point arrays."""
+    return np.array([T[setid == s][0] for s in range(int(setid.max()) + 1 if len(setid) else 0)])
 
 
 # ---- units ------------------------------------------------------------------------------

@@ -64,13 +64,8 @@ class RelaxationTable:
     def __len__(self) -> int:
         return len(self.t)
 
-    @property
-    def temperatures(self) -> np.ndarray:
-        return np.array([self.T[self.set == s][0] for s in range(self.n_sets)])
-
-    @property
-    def n_sets(self) -> int:
-        return int(self.set.max()) + 1 if len(self.set) else 0
+    temperatures = dma.DMATable.temperatures
+    n_sets = dma.DMATable.n_sets
 
     def as_rate_table(self) -> dma.DMATable:
         """The curves as a frequency-like table (omega = 1/t, both moduli = E(t)), for the

@@ -46,6 +46,7 @@ import numpy as np
 from vjax.material import Material
 
 from . import _optim
+from .dma import set_temperatures
 from .prony import LN10, PronyFit, _law_eval, _law_spec, _robust
 
 __all__ = ["count_extrema", "loss_extrema", "SmoothData", "smooth_fit", "LAMBDAS"]
@@ -107,7 +108,7 @@ class SmoothData:
 
     @property
     def temperatures(self):
-        return np.array([self.T[self.set == s][0] for s in range(int(self.set.max()) + 1)])
+        return set_temperatures(self.T, self.set)
 
     def log_rate(self):
         """ln of omega (frequency) or of 1/t (time): the variable a shift adds ln a_T to."""
