@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 
 import matplotlib
 
 matplotlib.use("Agg", force=False)
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker as ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import files  # noqa: E402
@@ -22,11 +24,38 @@ __all__ = ["master_curve", "relaxation_curve", "shift_factors", "residuals", "sp
            "save_all", "torque_fit", "moduli"]
 
 
+_SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
+
+
+def _plain(label: str) -> str:
+    """A mathtext log tick label ('$\\mathdefault{2\\times10^{-4}}$') as plain text (2×10⁻⁴)."""
+    if not label.startswith("$"):
+        return label
+    label = label.strip("$").replace(r"\mathdefault", "").replace(r"\times", "\u00d7").replace(r"\minus", "-")
+    label = re.sub(r"\^\{([^}]*)\}", lambda m: m.group(1).translate(_SUPERSCRIPT), label)
+    return label.replace("{", "").replace("}", "")
+
+
+class _PlainLogFormatter(ticker.LogFormatterSciNotation):
+    """Log-axis tick labels in plain text: matplotlib's mathtext labels cost more to parse than
+    the rest of a figure (about a third of a cached ``vjax-fit`` call went into them)."""
+
+    def __call__(self, x, pos=None):
+        return _plain(super().__call__(x, pos))
+
+
 def _save(fig, path):
     if path is None:
         return fig
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if axis.get_scale() == "log":
+                axis.set_major_formatter(_PlainLogFormatter(10.0))
+                axis.set_minor_formatter(_PlainLogFormatter(10.0, labelOnlyBase=False))
     try:
-        files.save_figure(fig, path, dpi=110, bbox_inches="tight")
+        # the layout engine places the axes in the one draw that renders the file
+        # (bbox_inches="tight" would draw the figure twice)
+        files.save_figure(fig, path, dpi=110)
     finally:
         plt.close(fig)
     return os.fspath(path)
@@ -45,20 +74,20 @@ def _eval(obj, method, x):
 
 
 def _reduced(table, shift):
-    return table.omega * 10.0 ** np.asarray(shift.log10_aT(table.T))
+    return table.omega * 10.0 ** _eval(shift, "log10_aT", table.T)
 
 
 def master_curve(table, material, shift, path=None):
     """Storage and loss (Pa) versus reduced angular frequency a_T omega (rad/s) at T_ref:
     data coloured by temperature, fitted Prony series as lines."""
     wr = _reduced(table, shift)
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     sc = None
     for a, y, lab in ((ax[0], table.storage, "storage"), (ax[1], table.loss, "loss")):
         sc = a.scatter(wr, y, c=table.T, s=9, cmap="coolwarm")
         a.set_xscale("log")
         a.set_yscale("log")
-        a.set_xlabel(r"reduced angular frequency $a_T\omega$ (rad/s)")
+        a.set_xlabel("reduced angular frequency a_T ω (rad/s)")
         a.set_ylabel(f"{lab} modulus {table.kind}{chr(39) if lab == 'storage' else 2 * chr(39)} (Pa)")
     w = np.logspace(np.log10(wr.min()) - 0.5, np.log10(wr.max()) + 0.5, 400)
     E = _eval(material, "modulus", w)
@@ -83,7 +112,7 @@ def shift_factors(data_shift, shift, path=None, laws=None):
         raise ValueError("data_shift must hold finite per-sweep shift factors (T and log10 a_T of equal length)")
     own = type(shift).__name__
     own = "table" if own == "ShiftTable" else own
-    fig, ax = plt.subplots(figsize=(6.2, 4.4))
+    fig, ax = plt.subplots(figsize=(6.2, 4.4), layout="constrained")
     ax.plot(T, values, "o", color="k", ms=5, label="per sweep (table)")
     Tl = np.linspace(T.min() - 5.0, T.max() + 5.0, 300)
     for law, style in (("table", "k-"), ("WLF", "C0--"), ("Arrhenius", "C3-.")):
@@ -93,7 +122,7 @@ def shift_factors(data_shift, shift, path=None, laws=None):
             continue
         elif laws and law in laws:
             fitted = laws[law]
-            rms = float(np.sqrt(np.mean((np.asarray(fitted.log10_aT(T)) - values) ** 2)))
+            rms = float(np.sqrt(np.mean((_eval(fitted, "log10_aT", T) - values) ** 2)))
             note = f"fitted end to end, rms {rms:.3f} dec from the table"
         else:
             fitted, rms = fit_law(data_shift, law)
@@ -101,15 +130,15 @@ def shift_factors(data_shift, shift, path=None, laws=None):
         Tv = Tl
         if law == "WLF":   # only above the WLF asymptote T_ref - C2
             Tv = Tl[Tl > float(fitted.T_ref) - float(fitted.C2) + 1e-6 * max(1.0, float(fitted.C2))]
-        consts = {"table": "", "WLF": f": $C_1$ = {float(getattr(fitted, 'C1', 0)):.4g}, "
-                                      f"$C_2$ = {float(getattr(fitted, 'C2', 0)):.4g} K",
-                  "Arrhenius": f": $E_a$ = {float(getattr(fitted, 'Ea', 0)) / 1e3:.4g} kJ/mol"}[law]
-        ax.plot(Tv, np.asarray(fitted.log10_aT(Tv)), style, lw=2.0 if law == own else 1.2,
+        consts = {"table": "", "WLF": f": C1 = {float(getattr(fitted, 'C1', 0)):.4g}, "
+                                      f"C2 = {float(getattr(fitted, 'C2', 0)):.4g} K",
+                  "Arrhenius": f": Ea = {float(getattr(fitted, 'Ea', 0)) / 1e3:.4g} kJ/mol"}[law]
+        ax.plot(Tv, _eval(fitted, "log10_aT", Tv), style, lw=2.0 if law == own else 1.2,
                 label=f"{law}{consts} ({note})")
     ax.axvline(float(shift.T_ref), color="0.7", lw=0.8)
-    ax.set_xlabel(r"temperature $T$ (°C)")
-    ax.set_ylabel(r"$\log_{10} a_T$")
-    ax.set_title(f"shift factors, $T_{{ref}}$ = {float(shift.T_ref):g} °C; the material uses: {own}", fontsize=10)
+    ax.set_xlabel("temperature T (°C)")
+    ax.set_ylabel("log₁₀ a_T")
+    ax.set_title(f"shift factors, T_ref = {float(shift.T_ref):g} °C; the material uses: {own}", fontsize=10)
     ax.legend(fontsize=8)
     return _save(fig, path)
 
@@ -144,8 +173,8 @@ def temperature_sweep(table, material, shift, frequencies=(1.0, 10.0), path=None
     T = _valid_temperatures(shift, np.linspace(table.T.min(), table.T.max(), 300))
     if T.size == 0:
         raise ValueError("the shift law is undefined over the data's temperatures")
-    aT = 10.0 ** np.asarray(shift.log10_aT(T))
-    fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
+    aT = 10.0 ** _eval(shift, "log10_aT", T)
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.2), layout="constrained")
     for j, f in enumerate(freqs):
         E = _eval(material, "modulus", 2 * np.pi * f * aT)
         c = f"C{j % 10}"
@@ -155,10 +184,10 @@ def temperature_sweep(table, material, shift, frequencies=(1.0, 10.0), path=None
         if m.any():
             for a, y in zip(ax, (table.storage[m], table.loss[m], table.loss[m] / table.storage[m])):
                 a.plot(table.T[m], y, "o", color=c, ms=4, mfc="none", label=f"data, {f:g} Hz")
-    labels = (f"storage modulus ${k}'$ (Pa)", f"loss modulus ${k}''$ (Pa)", r"loss factor $\tan\delta$")
+    labels = (f"storage modulus {k}′ (Pa)", f"loss modulus {k}″ (Pa)", "loss factor tan δ")
     for a, lab in zip(ax, labels):
         a.set_yscale("log")
-        a.set_xlabel(r"temperature $T$ (°C)")
+        a.set_xlabel("temperature T (°C)")
         a.set_ylabel(lab)
     ax[0].legend(fontsize=8)
     fig.suptitle("temperature sweep at fixed frequency, rebuilt from the fitted master curve and shift law")
@@ -174,14 +203,14 @@ def van_gurp_palmen(table, material, shift, path=None):
     wr = _reduced(table, shift)
     w = np.logspace(np.log10(wr.min()) - 0.5, np.log10(wr.max()) + 0.5, 400)
     E = _eval(material, "modulus", w)
-    fig, ax = plt.subplots(figsize=(6.2, 4.4))
+    fig, ax = plt.subplots(figsize=(6.2, 4.4), layout="constrained")
     sc = ax.scatter(mag, delta, c=table.T, s=10, cmap="coolwarm", label="data")
     ax.plot(np.abs(E), np.degrees(np.angle(E)), "k-", lw=1.2, label=f"Prony fit, {material.moduli.shape[0]} terms")
     ax.set_xscale("log")
-    ax.set_xlabel(f"complex modulus $|{table.kind}^*|$ (Pa)")
-    ax.set_ylabel(r"phase angle $\delta$ (°)")
+    ax.set_xlabel(f"complex modulus |{table.kind}*| (Pa)")
+    ax.set_ylabel("phase angle δ (°)")
     ax.legend(fontsize=8)
-    fig.colorbar(sc, ax=ax, label=r"$T$ (°C)")
+    fig.colorbar(sc, ax=ax, label="T (°C)")
     ax.set_title("van Gurp-Palmen plot")
     return _save(fig, path)
 
@@ -190,13 +219,13 @@ def residuals(table, material, shift, path=None):
     """log10(model/measured) of storage and loss versus reduced frequency, by temperature."""
     wr = _reduced(table, shift)
     E = _eval(material, "modulus", wr)
-    fig, ax = plt.subplots(figsize=(7, 4.2))
+    fig, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     ax.scatter(wr, np.log10(E.real / table.storage), c=table.T, s=9, cmap="coolwarm", marker="o", label="storage")
     ax.scatter(wr, np.log10(E.imag / table.loss), c=table.T, s=12, cmap="coolwarm", marker="x", label="loss")
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xscale("log")
-    ax.set_xlabel(r"reduced angular frequency $a_T\omega$ (rad/s)")
-    ax.set_ylabel(r"$\log_{10}$(model / measured)")
+    ax.set_xlabel("reduced angular frequency a_T ω (rad/s)")
+    ax.set_ylabel("log₁₀(model / measured)")
     ax.legend()
     return _save(fig, path)
 
@@ -204,9 +233,9 @@ def residuals(table, material, shift, path=None):
 def spectrum(material, path=None):
     """Relaxation spectrum: E_k (Pa) at tau_k (s), and the relaxation modulus E(t)."""
     tau, Ek = np.asarray(material.times), np.asarray(material.moduli)
-    fig, ax = plt.subplots(figsize=(6, 4.2))
+    fig, ax = plt.subplots(figsize=(6, 4.2), layout="constrained")
     ax.vlines(tau, 1e-300, Ek, color="C0")
-    ax.plot(tau, Ek, "o", color="C0", label=r"$E_k$ at $\tau_k$")
+    ax.plot(tau, Ek, "o", color="C0", label="E_k at τ_k")
     t = np.logspace(np.log10(tau.min()) - 1, np.log10(tau.max()) + 1, 300)
     ax.plot(t, _eval(material, "relaxation", t), "k-", lw=1, label="E(t)")
     ax.axhline(float(material.E0), color="0.6", ls="--", lw=0.8, label=f"E0 = {float(material.E0):.3g} Pa")
@@ -222,14 +251,14 @@ def spectrum(material, path=None):
 def relaxation_curve(table, material, shift, path=None):
     """Relaxation data (a :class:`fitting.relaxation.RelaxationTable`) against reduced time
     t / a_T, coloured by temperature, with the fitted E(t) at T_ref."""
-    tr = table.t / 10.0 ** np.asarray(shift.log10_aT(table.T))
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    tr = table.t / 10.0 ** _eval(shift, "log10_aT", table.T)
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
     sc = ax.scatter(tr, table.modulus, c=table.T, s=9, cmap="coolwarm")
     t = np.logspace(np.log10(tr.min()) - 0.5, np.log10(tr.max()) + 0.5, 400)
     ax.plot(t, _eval(material, "relaxation", t), "k-", lw=1.2, label=f"Prony, {material.moduli.shape[0]} terms")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(r"reduced time $t / a_T$ (s)")
+    ax.set_xlabel("reduced time t / a_T (s)")
     ax.set_ylabel(f"relaxation modulus {table.kind}(t) (Pa)")
     ax.legend()
     fig.colorbar(sc, ax=ax, label="T (C)")
@@ -259,7 +288,7 @@ def torque_fit(data, fits, sigma, path=None, truth=None):
     (label -> :class:`fitting.torque.TorqueFit`); ``truth`` (optional, twin experiments):
     torques of the true material (thin line)."""
     conds = sorted(set(zip(data.T.tolist(), data.load.tolist())))
-    fig, axes = plt.subplots(1, len(fits), figsize=(6 * len(fits), 4.2), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, len(fits), figsize=(6 * len(fits), 4.2), sharey=True, squeeze=False, layout="constrained")
     for ax, (label, fit) in zip(axes[0], fits.items()):
         for j, (Tc, Fc) in enumerate(conds):
             sel = (data.T == Tc) & (data.load == Fc)
@@ -287,7 +316,7 @@ def moduli(curves, path=None, bands=()):
     ``curves`` = [(Material, label, matplotlib style)], over 1e-8..1e6 rad/s; ``bands``:
     (low, high) reduced-frequency ranges to shade (e.g. what a torque data set probes)."""
     w = np.logspace(-8, 6, 300)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     for mat, label, style in curves:
         E = _eval(mat, "modulus", w)
         axes[0].loglog(w, E.real, style, label=label)

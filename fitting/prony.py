@@ -190,17 +190,25 @@ def _law_spec(shift, T_sets, T_ref, T_min):
 
 
 def _law_eval(kind, p, Ts, T_ref, c2min):
-    """log10 a_T per set for the unconstrained law parameters ``p`` (padded vector)."""
-    if kind == _WLF:
+    """log10 a_T per set for the unconstrained law parameters ``p`` (padded vector). ``kind``
+    (_WLF, _ARR or _TAB) may be traced: then one compiled function serves all three laws."""
+    def wlf(p):
         C1, C2 = jnp.exp(p[0]), c2min + jnp.exp(p[1])
         dT = Ts - T_ref
         return -C1 * dT / (C2 + dT)
-    if kind == _ARR:
+
+    def arrhenius(p):
         g = (1.0 / (Ts + KELVIN) - 1.0 / (T_ref + KELVIN)) / (GAS_CONSTANT * LN10)
         return jnp.exp(p[0]) * g
-    q = p[:Ts.shape[0]]
-    # gauge: log10 a_T(T_ref) = 0 on the linear interpolant of the table
-    return q - ShiftTable(Ts, q, T_ref).log10_aT(T_ref)
+
+    def table(p):
+        q = p[:Ts.shape[0]]
+        # gauge: log10 a_T(T_ref) = 0 on the linear interpolant of the table
+        return q - ShiftTable(Ts, q, T_ref).log10_aT(T_ref)
+    branches = {_WLF: wlf, _ARR: arrhenius, _TAB: table}
+    if isinstance(kind, int):
+        return branches[kind](p)
+    return jax.lax.switch(kind, [branches[k] for k in (_WLF, _ARR, _TAB)], p)
 
 
 def _resid_jac(x, on, data, kind, K, robust):

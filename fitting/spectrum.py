@@ -135,10 +135,10 @@ def _kernel(domain, z):
     return p1, p1, p1 / z, p1 / z
 
 
-def _resid_jac(x, on, data, domain, kind, K, robust):
+def _resid_jac(x, on, data, domain, K, robust):
     """Residuals (log10 storage and loss or E(t), then the smoothness rows) and their analytic
     Jacobian with respect to x = (ln E0, ln E_k (K), law parameters)."""
-    u, setid, y1, y2, w1, w2, Ts, T_ref, c2min, ltau, sq_lam = data
+    u, setid, y1, y2, w1, w2, Ts, T_ref, c2min, ltau, kind, sq_lam = data
     E0 = jnp.exp(x[0])
     lE = x[1:K + 1]
     Ek = jnp.exp(lE) * on
@@ -164,11 +164,13 @@ def _resid_jac(x, on, data, domain, kind, K, robust):
     return jnp.concatenate([r, D @ lE]), jnp.concatenate([J, Jp], axis=0)
 
 
-@functools.partial(jax.jit, static_argnames=("domain", "kind", "K", "max_iter", "robust"))
-def _solve(x0, active, data, *, domain, kind, K, max_iter, ftol, robust):
+@functools.partial(jax.jit, static_argnames=("domain", "K", "max_iter", "robust"))
+def _solve(x0, active, data, *, domain, K, max_iter, ftol, robust):
+    # the shift law's kind is data (a traced index): the table, WLF and Arrhenius fits of a
+    # calibration share one compilation
     on = active[1:K + 1]
     return _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
-                                      resid_jac=lambda x: _resid_jac(x, on, data, domain, kind, K, robust))
+                                      resid_jac=lambda x: _resid_jac(x, on, data, domain, K, robust))
 
 
 def _grid(lo, hi, per_decade, max_terms):
@@ -227,7 +229,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     base = (jnp.asarray(pad(u)), jnp.asarray(np.concatenate([data.set, np.zeros(npad - n, int)])),
             jnp.asarray(pad(np.log10(data.y1 / scale))), jnp.asarray(pad(np.log10(data.y2 / scale))),
             jnp.asarray(pad(np.full(n, weights[0]))), jnp.asarray(pad(np.full(n, weights[1] * two))),
-            jnp.asarray(Tsets, float), jnp.asarray(T_ref), jnp.asarray(c2min), jnp.asarray(ltau))
+            jnp.asarray(Tsets, float), jnp.asarray(T_ref), jnp.asarray(c2min), jnp.asarray(ltau), jnp.asarray(kind))
     # start: the log-linear interpolation of the data's storage (relaxation) modulus drop
     if start is None:
         E0 = max(float(np.min(data.y1)) * 0.9, 1e-6 * scale)
@@ -250,7 +252,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
 
     def run(lam_, x0):
         sol = _solve(jnp.asarray(x0), jnp.asarray(active), base + (jnp.asarray(math.sqrt(lam_)),),
-                     domain=data.domain, kind=kind, K=Kp, max_iter=int(max_iter), ftol=float(ftol),
+                     domain=data.domain, K=Kp, max_iter=int(max_iter), ftol=float(ftol),
                      robust=float(robust))
         xs = np.asarray(sol.x)
         J = np.asarray(sol.jacobian)[:n_res][live][:, on]
