@@ -27,7 +27,7 @@ import numpy as np
 
 from . import _checks
 from .material import Material
-from .operator import ring_operator
+from .operator import ring_operator, whirl_symbol
 
 _GREEN = {"hole": "hole", "disc": "cylinder", "half_plane": "half_plane", "liner": "liner", "sleeve": "sleeve"}
 
@@ -47,6 +47,12 @@ class Body:
         elements, for a pressure pattern moving at ``omega`` (rad/s) relative to the body."""
         ref = 1.0 if self.ref_length is None else self.ref_length
         return ring_operator(_GREEN[self.kind], self.material, R, n, omega, memory, ref, self.thickness)
+
+    def whirl_symbol(self, R, n: int, omega, whirl):
+        """Full-FFT symbol of the response to a perturbation at ``whirl`` (rad/s) of a pattern
+        moving at ``omega`` relative to the body (:func:`vjax.operator.whirl_symbol`)."""
+        ref = 1.0 if self.ref_length is None else self.ref_length
+        return whirl_symbol(_GREEN[self.kind], self.material, R, n, omega, whirl, ref, self.thickness)
 
     def at_temperature(self, shift, T) -> "Body":
         """The same body with its material at temperature ``T`` (C), see

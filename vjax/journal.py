@@ -428,6 +428,36 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     >>> bool(sol.converged), 0 < float(sol.eccentricity) < 1
     (True, True)
     """
+    pr, cfg, housing, shaft = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
+                                     load_angle, memory, cavitation, supply_angle, supply_pressure, temperature,
+                                     shift, options)
+    n, p_ref, dtype = options.n, pr.p_ref, pr.x0.dtype
+    if initial is not None:
+        if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
+            raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
+        x0 = jnp.concatenate([initial.pressure / p_ref, jnp.stack([initial.eccentricity, initial.attitude_angle])])
+    elif options.strategy == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
+        # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
+        # cold start are spent far from the solution, where a coarse grid is as good and
+        # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
+        coarse = journal_bearing(
+            R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+            omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
+            supply_angle=supply_angle, supply_pressure=supply_pressure,
+            options=dataclasses.replace(options, n=n // 4), throw=False)
+        p0 = jnp.interp(grid(n)[0], coarse.theta, coarse.pressure, period=2 * jnp.pi)
+        x0 = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
+    else:
+        x0 = _guess(pr, n)
+    sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
+    _solve.report("journal_bearing", sol, throw)
+    return sol
+
+
+def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
+           cavitation, supply_angle, supply_pressure, temperature, shift, options):
+    """Checked arguments of :func:`journal_bearing` -> (parameters with a zero start, config,
+    housing body, shaft body) - the bodies at ``temperature``, None when rigid."""
     housing = as_body("housing", housing, hole, HOUSINGS)
     shaft = as_body("shaft", shaft, disc, SHAFTS)
     _checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
@@ -468,26 +498,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
                  op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
                                                                 memory=memory),
                  x0=jnp.zeros(n + 2, dtype))
-    if initial is not None:
-        if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
-            raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
-        x0 = jnp.concatenate([initial.pressure / p_ref, jnp.stack([initial.eccentricity, initial.attitude_angle])])
-    elif options.strategy == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
-        # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
-        # cold start are spent far from the solution, where a coarse grid is as good and
-        # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
-        coarse = journal_bearing(
-            R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
-            omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
-            supply_angle=supply_angle, supply_pressure=supply_pressure,
-            options=dataclasses.replace(options, n=n // 4), throw=False)
-        p0 = jnp.interp(grid(n)[0], coarse.theta, coarse.pressure, period=2 * jnp.pi)
-        x0 = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
-    else:
-        x0 = _guess(pr, n)
-    sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
-    _solve.report("journal_bearing", sol, throw)
-    return sol
+    return pr, cfg, housing, shaft
 
 
 def _load_vector(load, load_angle):

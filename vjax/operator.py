@@ -171,6 +171,25 @@ def _symbol(kind, material, R, n, omega, memory, ref_length, thickness):
         material, modes, omega, memory)
 
 
+def whirl_symbol(kind: str, material: Material, R, n: int, omega, whirl, ref_length=1.0, thickness=None):
+    """Operator of a small perturbation sigma(theta) e^{i whirl t} of a pressure pattern that
+    moves at ``omega`` (rad/s) relative to the body, on the full FFT (modes in
+    ``jnp.fft.fftfreq`` order): u^_m = R L^_|m| J*(-m omega + whirl) sigma^_m.
+
+    A material point sees mode m at -m omega + whirl (rad/s), so modes m and -m respond at
+    different frequencies and the operator is not Hermitian (the real FFT of
+    :func:`ring_operator` does not apply). At ``whirl = 0`` it equals the periodic steady
+    operator (the Nyquist mode takes the mean of its two frequencies, Re J* at whirl 0).
+    """
+    m = jnp.fft.fftfreq(n, 1.0 / n)
+    L = element_symbol(kind, n, R, material.nu, ref_length, thickness)[jnp.abs(m).astype(int)]
+    J = material.compliance(-m * omega + whirl)
+    if n % 2 == 0:
+        J = J.at[n // 2].set(0.5 * (material.compliance(-0.5 * n * omega + whirl)
+                                    + material.compliance(0.5 * n * omega + whirl)))
+    return R * L * J
+
+
 def spectral_derivative(u):
     """du/dtheta of a periodic sampled field (Nyquist mode dropped)."""
     n = u.shape[-1]

@@ -17,12 +17,15 @@ re-coding them. SI units, plane strain, per unit axial length; jax.numpy through
   Lubrication*, 1961, ch. 3; Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film
   Lubrication*, 2004, ch. 10): :func:`long_bearing` with "sommerfeld", "half_sommerfeld" or
   "reynolds" conditions gives load, attitude angle and rupture angle for an eccentricity
-  ratio; :func:`half_sommerfeld_eccentricity` inverts the half-Sommerfeld load.
+  ratio; :func:`half_sommerfeld_eccentricity` inverts the half-Sommerfeld load;
+  :func:`long_bearing_coefficients` gives its stiffness and damping for the full-Sommerfeld
+  film and the pi film (derived in docs/theory.md, journal dynamics).
 """
 from __future__ import annotations
 
 import functools
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -31,7 +34,7 @@ from ._solve import bisect
 
 __all__ = ["hertz_line_contact", "lame_displacement", "winkler_pin", "oedometric_stiffness", "persson_shape_functions", "persson_coefficients",
            "persson_pressure", "persson_load_parameter", "persson_b_from_load", "persson_limit_b",
-           "long_bearing", "half_sommerfeld_load", "half_sommerfeld_eccentricity"]
+           "long_bearing", "half_sommerfeld_load", "half_sommerfeld_eccentricity", "long_bearing_coefficients"]
 
 
 # ------------------------------------------------------------------------------ Hertz
@@ -270,3 +273,54 @@ def long_bearing(eps, R, radial_clearance, viscosity, speed, conditions: str = "
         theta = jnp.angle(jnp.exp(1j * jnp.asarray(theta, dtype=float)))
         return jnp.where(theta < t2, p_at(theta, t2), 0.0)
     return dict(load=jnp.hypot(Fx, Fy), attitude=jnp.arctan2(Fy, -Fx), rupture=t2, pressure=pressure)
+
+
+def _long_bearing_forces(eps, eps_dot, omega_e, conditions):
+    """Film force on the journal over B = 6 eta R^3 / c^2, (radial along the line of centres,
+    tangential), for eccentricity ratio eps, its rate eps_dot (1/s) and the effective
+    angular speed omega_e = 2 (v / R - gamma') (rad/s), gamma' the whirl rate of the line of
+    centres; lubricant at zero pressure at theta = pi of the moving line of centres."""
+    beta = jnp.sqrt(1 - eps**2)
+    if conditions == "sommerfeld":      # full film: the integrals over the whole circle
+        return jnp.stack([-eps_dot * 2 * jnp.pi / beta**3,
+                          omega_e * 2 * jnp.pi * eps / ((2 + eps**2) * beta)])
+    # pi film: the positive half (-pi, 0) of the rotation part; the squeeze part
+    # (eps_dot / eps)((1 - eps cos)^-2 - (1 + eps)^-2) over the same half
+    return jnp.stack([-omega_e * 2 * eps**2 / ((2 + eps**2) * beta**2) - eps_dot * jnp.pi / beta**3,
+                      omega_e * jnp.pi * eps / ((2 + eps**2) * beta) + eps_dot * 4 / ((1 - eps) * (1 + eps) ** 2)])
+
+
+def long_bearing_coefficients(eps, R, radial_clearance, viscosity, speed, conditions: str = "half_sommerfeld"):
+    """Stiffness K (N/m^2) and damping C (N s/m^2) per unit length of the rigid infinitely long
+    bearing of :func:`long_bearing` ("sommerfeld" or "half_sommerfeld": the pi film), in the
+    line-of-centres frame (X from the bore's centre to the journal's, Y 90 degrees ahead),
+    convention dF = -(K dx + C dx/dt) for the film force F on the journal.
+
+    Pressure (theta from the line of centres, film c (1 - eps cos theta), datum p(pi) = 0):
+    p = -6 eta R^2 omega_e eps sin(theta)(2 - eps cos theta) / (c^2 (2 + eps^2)(1 - eps cos theta)^2)
+        + 6 eta R^2 (eps' / eps)((1 - eps cos theta)^-2 - (1 + eps)^-2) / c^2,
+    omega_e = 2 (v/R - gamma'); the forces (radial, tangential) over B = 6 eta R^3 / c^2 are
+    pi film:  (-2 omega_e eps^2 / ((2 + eps^2)(1 - eps^2)) - pi eps' / (1 - eps^2)^(3/2),
+               pi omega_e eps / ((2 + eps^2) sqrt(1 - eps^2)) + 4 eps' / ((1 - eps)(1 + eps)^2));
+    full film: (-2 pi eps' / (1 - eps^2)^(3/2), 2 pi omega_e eps / ((2 + eps^2) sqrt(1 - eps^2))).
+    A motion (dX, dY) changes eps by dX / c and turns the line of centres by dY / (eps c),
+    which also turns the steady force: K_XX = -dF_r/deps / c, K_XY = F_t / (eps c),
+    K_YX = -dF_t/deps / c, K_YY = -F_r / (eps c); C_XX = -dF_r/deps' / c,
+    C_YX = -dF_t/deps' / c, C_XY = 2 dF_r/domega_e / (eps c), C_YY = 2 dF_t/domega_e / (eps c)
+    (derivatives of the closed forms, taken by JAX).
+    """
+    _checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
+    _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed)
+    e = _checks.values("eps", eps)
+    if e is not None and not (0 < e < 1):
+        raise ValueError(f"eps must be in (0, 1), got {eps!r}")
+    c = radial_clearance
+    B = 6 * viscosity * R**3 / c**2
+    we = 2 * speed / R
+    force = lambda x: B * _long_bearing_forces(x[0], x[1], x[2], conditions)  # noqa: E731
+    x = jnp.stack([jnp.asarray(eps, float), 0.0, we])
+    F = force(x)
+    D = jax.jacfwd(force)(x)        # columns: d/deps, d/deps', d/domega_e
+    K = jnp.array([[-D[0, 0] / c, F[1] / (eps * c)], [-D[1, 0] / c, -F[0] / (eps * c)]])
+    C = jnp.array([[-D[0, 1] / c, 2 * D[0, 2] / (eps * c)], [-D[1, 1] / c, 2 * D[1, 2] / (eps * c)]])
+    return K, C

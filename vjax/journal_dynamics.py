@@ -1,0 +1,311 @@
+"""Dynamic coefficients of the (visco)elastic journal bearing: the linearized force response to
+a small harmonic motion of the journal centre (docs/theory.md, journal dynamics).
+
+Convention
+----------
+The journal centre moves by dx(t) = Re(dx^ e^{i Omega t}) about its steady position (absolute
+frame of the load vector: x = 0 rad, CCW positive; ``Omega`` the whirl frequency, rad/s,
+negative for backward whirl). The film force on the journal changes by
+dF = Re(dF^ e^{i Omega t}) with
+
+    dF^ = -Z(Omega) dx^,   Z(Omega) = K(Omega) + i Omega C(Omega)      (2 x 2, per unit length)
+
+so that a rotor model reads M x'' + C x' + K x = external forces. K (N/m per m of bearing
+length: N/m^2) is Re Z, C (N s/m^2) is Im Z / Omega (its limit at Omega = 0). Rigid bodies give
+K and C independent of Omega; at Omega -> 0, K is the static stiffness of the steady solution
+(the inverse of d(journal position)/d(load), which ``jax.jacfwd`` of
+:func:`vjax.journal_bearing` gives).
+
+Linearization
+-------------
+The steady problem lives in the line-of-centres frame (phi = theta - gamma). A motion of the
+centre is a change de of the eccentricity (along the line of centres, X) and a rotation
+dgamma = dY / e of the line of centres (Y, 90 degrees ahead). In a frame turning with the
+line of centres the rigid film is c - e cos phi exactly, the groove stays where it is, and
+the surfaces' entrainment speed drops by R dgamma/dt (the classical omega - 2 gamma'). The
+perturbation of the Reynolds equation (finite volumes, with the squeeze term R dh/dt and the
+Fischer-Burmeister complementarity linearized as is: a cavitated cell stays at p = 0, a
+pressurized one conserves mass; half-Sommerfeld's clipped region moves with the zero of
+the pressure) is then
+
+    A(Omega) dp = -(b_e de + b_e' i Omega de + b_v i Omega dgamma + (G_U + i Omega G_U') dU_rot)
+
+with dU = M(Omega) dp + dU_rot the bodies' response: M(Omega) the whirl operator of each
+body (:func:`vjax.operator.whirl_symbol`: a material point of a body rotating at omega_b
+sees mode m of the perturbation at Omega + m omega_b, so modes m and -m differ), and
+dU_rot = (M(0) - M(Omega)) p0' dgamma the part of the steady deformation that lags behind the
+rotating pattern (zero for elastic bodies and for Omega = 0). The force in the fixed frame
+is the turning frame's plus the steady force turned by dgamma. A dense complex solve per
+Omega (n x n): fine up to n ~ 2048.
+
+The pressure datum is the groove, which turns with the line of centres (as in
+:func:`vjax.journal_bearing`); memory is the periodic steady state (a truncated load history
+has no steady small-motion response).
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import math
+import os
+import tempfile
+from functools import partial
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _checks, _solve, reynolds
+from .journal import JournalOptions, JournalResult, _Config, _equations, _newton, _Params, _setup, journal_bearing
+from .operator import grid
+
+__all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True, repr=False)
+class JournalCoefficients:
+    """Dynamic coefficients of :func:`journal_coefficients` (SI, per unit axial length).
+
+    ``whirl`` Omega (rad/s, shape (m,)); ``impedance`` Z (complex, (m, 2, 2), N/m^2);
+    ``stiffness`` K = Re Z (N/m^2); ``damping`` C = Im Z / Omega (N s/m^2; at Omega = 0 its
+    limit), all in the absolute x, y frame (``[..., i, j]``: force component i per motion
+    component j); ``speed`` the journal's angular velocity (rad/s); ``steady`` the
+    :class:`~vjax.JournalResult` they linearize about. Convention: dF = -(K dx + C dx/dt).
+    """
+
+    whirl: jax.Array
+    impedance: jax.Array
+    stiffness: jax.Array
+    damping: jax.Array
+    speed: jax.Array
+    steady: JournalResult
+
+    def __repr__(self):
+        return f"JournalCoefficients({self.whirl.shape[0]} whirl frequencies, eps = {float(self.steady.eccentricity):.4g})"
+
+    def in_line_of_centres(self):
+        """(K, C) turned into the line-of-centres frame (X from the bore's centre to the
+        journal's, Y 90 degrees counter-clockwise from it)."""
+        g = self.steady.line_of_centres_angle
+        rot = jnp.array([[jnp.cos(g), -jnp.sin(g)], [jnp.sin(g), jnp.cos(g)]])
+        turn = lambda A: rot.T @ A @ rot  # noqa: E731
+        return jax.vmap(turn)(self.stiffness), jax.vmap(turn)(self.damping)
+
+    def table(self, length=1.0) -> dict:
+        """Columns for a rotordynamics code, for a bearing of axial ``length`` (m; the
+        infinitely-long coefficients times the length): ``speed`` (rad/s), ``frequency`` (the
+        whirl, rad/s), ``kxx, kxy, kyx, kyy`` (N/m), ``cxx, cxy, cyx, cyy`` (N s/m) - the names
+        of ROSS's bearing tables (``ross.BearingElement``)."""
+        _checks.positive("length", length)
+        K, C = np.asarray(self.stiffness) * length, np.asarray(self.damping) * length
+        cols = {"speed": np.full(K.shape[0], float(self.speed)), "frequency": np.asarray(self.whirl)}
+        for name, A in (("k", K), ("c", C)):
+            for i, a in enumerate("xy"):
+                for j, b in enumerate("xy"):
+                    cols[f"{name}{a}{b}"] = A[:, i, j]
+        return cols
+
+    def save_csv(self, path, length=1.0) -> str:
+        """Write :meth:`table` as CSV (one header line of column names; SI units as in
+        :meth:`table`), atomically: a temporary file in the target directory, then ``os.replace``."""
+        cols = self.table(length)
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(list(cols))
+        for row in zip(*cols.values()):
+            w.writerow([repr(float(v)) for v in row])
+        path = os.fspath(path)
+        fd, tmp = tempfile.mkstemp(prefix=".coeffs.", suffix=".tmp", dir=os.path.dirname(os.path.abspath(path)))
+        try:
+            with os.fdopen(fd, "w") as fh:
+                fh.write(buf.getvalue())
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+        return path
+
+
+def _turning_frame_equations(pz, U, Udot, de, de_dot, dgamma_dot, x0, pr: _Params, cfg: _Config):
+    """Scaled cell equations (with the groove datum) and the film force on the journal in the
+    frame turning with the line of centres, for pressure ``pz`` (/p_ref), body displacement
+    ``U`` (m, u_B + u_J) and its rate ``Udot`` (m/s), eccentricity change ``de`` (m) and rate
+    ``de_dot`` (m/s), rotation rate of the line of centres ``dgamma_dot`` (rad/s)."""
+    n = pz.shape[0]
+    theta, alpha = grid(n)
+    p = pz * pr.p_ref
+    h = pr.c * (1 - x0[n] * jnp.cos(theta)) - de * jnp.cos(theta) + U
+    hdot = -de_dot * jnp.cos(theta) + Udot
+    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v - pr.R * dgamma_dot)
+    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=pr.R * hdot)
+    r = r.at[cfg.groove].set(pz[cfg.groove] - pr.ps / pr.p_ref)
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * jnp.cos(theta)), jnp.sum(p_load * jnp.sin(theta))])
+    return r, F
+
+
+def _circulant(symbol):
+    """Dense matrix of the circulant operator with full-FFT ``symbol``."""
+    n = symbol.shape[0]
+    col = jnp.fft.ifft(symbol)
+    return col[(jnp.arange(n)[:, None] - jnp.arange(n)[None, :]) % n]
+
+
+@partial(jax.jit, static_argnums=(2,))
+def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
+    """Z(Omega) (complex, (m, 2, 2), absolute frame) about the steady unknowns ``x0``;
+    ``bodies``: (housing, R_housing, omega relative to it, shaft, ...) or None entries."""
+    n = x0.shape[0] - 2
+    theta, _ = grid(n)
+    pz0 = x0[:n]
+    eps, phi = x0[n], x0[n + 1]
+    e = eps * pr.c
+    zero = jnp.zeros(n, x0.dtype)
+    U0 = zero
+    for op in (pr.op_B, pr.op_J):
+        if op is not None:
+            U0 = U0 + op(reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation))
+
+    def eqs(pz, U, Udot, s):
+        return _turning_frame_equations(pz, U, Udot, s[0], s[1], s[2], x0, pr, cfg)
+
+    args = (pz0, U0, zero, jnp.zeros(3, x0.dtype))
+    F0 = eqs(*args)[1]
+    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(*args)
+    # d p_load = w dp (w: the pressurized fraction of each cell under half-Sommerfeld) and the
+    # film force it makes, per unit change of pz
+    p_load0 = reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation)
+    load_slope = reynolds.load_slope(pz0, cfg.cavitation)
+    G_p = -pr.R * (2 * jnp.pi / n) * pr.p_ref * load_slope * jnp.stack([jnp.cos(theta), jnp.sin(theta)])
+    dp_load0 = jnp.fft.ifft(1j * jnp.fft.fftfreq(n, 1.0 / n) * jnp.fft.fft(p_load0))   # d p_load / d phi
+    dp_load0 = dp_load0.at[n // 2].set(0.0) if n % 2 == 0 else dp_load0   # Nyquist: no derivative
+
+    def one(W):
+        M = jnp.zeros((n, n), complex)
+        rot = jnp.zeros(n, complex)            # (M(0) - M(W)) p0', per unit dgamma
+        for body, R_b, omega_b in bodies:
+            if body is not None:
+                sym, sym0 = body.whirl_symbol(R_b, n, omega_b, W), body.whirl_symbol(R_b, n, omega_b, 0.0)
+                M = M + _circulant(sym)
+                rot = rot + jnp.fft.ifft((sym0 - sym) * jnp.fft.fft(dp_load0))
+        GU = J_U + 1j * W * J_Ud
+        A = J_p + GU @ (M * (load_slope * pr.p_ref)[None, :])
+        # right-hand sides per unit journal motion dX (along the line of centres), dY
+        b_X = J_s[:, 0] + 1j * W * J_s[:, 1]
+        b_Y = (1j * W * J_s[:, 2] + GU @ rot) / e
+        dpz = jnp.linalg.solve(A, -jnp.stack([b_X, b_Y], axis=1))
+        dF = G_p @ dpz                                          # turning frame
+        dF = dF.at[:, 1].add(jnp.stack([-F0[1], F0[0]]) / e)     # the steady force turned by dY / e
+        return -dF
+
+    Z_loc = jax.vmap(one)(whirl)
+    g = pr.load_angle + phi
+    R = jnp.array([[jnp.cos(g), -jnp.sin(g)], [jnp.sin(g), jnp.cos(g)]])
+    return jnp.einsum("ij,mjk,lk->mil", R, Z_loc, R)
+
+
+def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None,
+                         omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, cavitation: str = "reynolds",
+                         supply_angle=math.pi, supply_pressure=0.0, temperature=None, shift=None,
+                         initial: JournalResult | None = None, options: JournalOptions = JournalOptions(),
+                         throw: bool = True) -> JournalCoefficients:
+    """Stiffness and damping of a (visco)elastic journal bearing at whirl frequencies ``whirl``.
+
+    The arguments are those of :func:`vjax.journal_bearing` (which solves the steady state,
+    with the periodic-memory bodies) plus ``whirl`` (rad/s, a scalar or 1-D array; negative
+    for backward whirl). Returns :class:`JournalCoefficients` (module docstring for the frame
+    and the sign convention). Differentiable in the bearing's parameters.
+
+    >>> import jax; jax.config.update("jax_enable_x64", True)
+    >>> co = journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 100.0], omega_shaft=100.0,
+    ...                           options=JournalOptions(n=64))
+    >>> co.stiffness.shape, bool(co.stiffness[0, 1, 1] > 0)
+    ((2, 2, 2), True)
+    """
+    whirl = jnp.atleast_1d(jnp.asarray(whirl, jnp.result_type(float)))
+    if whirl.ndim != 1:
+        raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {whirl.shape}")
+    _checks.finite("whirl", whirl)
+    sol = journal_bearing(R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+                          omega_housing=omega_housing, load_angle=load_angle, memory="periodic",
+                          cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
+                          temperature=temperature, shift=shift, initial=initial, options=options, throw=throw)
+    pr, cfg, hb, sb = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
+                             load_angle, "periodic", cavitation, supply_angle, supply_pressure, temperature, shift,
+                             options)
+    x0 = jnp.concatenate([sol.pressure / pr.p_ref, jnp.stack([sol.eccentricity, sol.attitude_angle])])
+    if cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
+        x0, stats = _solve.implicit_root(lambda prm: _newton(prm.x0, prm, cfg),
+                                         lambda x, aux, prm: _equations(x, prm, cfg)[0])(pr)
+        _solve.report("journal_coefficients (half-Sommerfeld pressure)", stats, throw)
+    bodies = ((hb, pr.R, -pr.omega_B), (sb, pr.RJ, -pr.omega_J))
+    # Z and dZ/dOmega (each Z_m depends on Omega_m only): C = Im Z / Omega, or its limit
+    # d(Im Z)/dOmega at Omega = 0
+    Z, dZ = jax.jvp(lambda w: _impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
+    at_rest = (whirl == 0)[:, None, None]
+    C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
+    return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=Z.real, damping=C,
+                               speed=jnp.asarray(omega_shaft, whirl.dtype), steady=sol)
+
+
+def stability_threshold(coefficients: JournalCoefficients, length=1.0) -> dict:
+    """Onset of oil whirl of a symmetric rigid rotor on two identical bearings (cylindrical
+    mode; Lund's classical analysis): per bearing a mass M on the coefficients K, C,
+
+        M x'' + C x' + K x = 0,  threshold det(K - M W^2 + i W C) = 0 with real W:
+        K_eq = (K_xx C_yy + K_yy C_xx - K_xy C_yx - K_yx C_xy) / (C_xx + C_yy),
+        W^2 = ((K_xx - K_eq)(K_yy - K_eq) - K_xy K_yx) / (C_xx C_yy - C_xy C_yx),
+        M_crit = K_eq / W^2.
+
+    Frequency-independent coefficients (rigid bodies) need one whirl frequency; for
+    frequency-dependent ones (viscoelastic liners) the coefficients are taken at the whirl
+    frequency of the threshold itself: the root of W^2(W) - W^2 on the ``whirl`` grid of
+    ``coefficients`` (linear interpolation of the coefficients; None if no sign change).
+
+    Returns dict ``whirl`` W (rad/s), ``whirl_ratio`` W / omega_journal, ``critical_mass``
+    M_crit (kg per bearing of axial ``length`` m), ``stiffness`` K_eq (N/m for that length);
+    a mass below M_crit runs stable. None values when no threshold exists (stable at any mass).
+    """
+    _checks.positive("length", length)
+    K = np.asarray(coefficients.stiffness) * length
+    C = np.asarray(coefficients.damping) * length
+    W = np.asarray(coefficients.whirl)
+    speed = float(coefficients.speed)
+    none = dict(whirl=None, whirl_ratio=None, critical_mass=None, stiffness=None)
+
+    def lund(K, C):       # (K_eq, W^2) of coefficient arrays (..., 2, 2)
+        Keq = (K[..., 0, 0] * C[..., 1, 1] + K[..., 1, 1] * C[..., 0, 0] - K[..., 0, 1] * C[..., 1, 0]
+               - K[..., 1, 0] * C[..., 0, 1]) / (C[..., 0, 0] + C[..., 1, 1])
+        W2 = ((K[..., 0, 0] - Keq) * (K[..., 1, 1] - Keq) - K[..., 0, 1] * K[..., 1, 0]) \
+            / (C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0])
+        return Keq, W2
+
+    if W.size == 1:
+        keq, w2 = lund(K[0], C[0])
+    else:
+        forward = np.flatnonzero(W > 0)
+        forward = forward[np.argsort(W[forward])]
+        W, K, C = W[forward], K[forward], C[forward]
+        at = lambda t, i: (K[i] + t * (K[i + 1] - K[i]), C[i] + t * (C[i + 1] - C[i]), W[i] + t * (W[i + 1] - W[i]))  # noqa: E731
+        f = lund(K, C)[1] - W ** 2      # the threshold: W^2 from the coefficients at W equals W^2
+        cross = np.flatnonzero(np.sign(f[:-1]) != np.sign(f[1:]))
+        if cross.size == 0:
+            return none
+        i, lo, hi = cross[0], 0.0, 1.0
+        for _ in range(60):             # bisection on the linearly interpolated coefficients
+            mid = 0.5 * (lo + hi)
+            Km, Cm, Wm = at(mid, i)
+            if np.sign(lund(Km, Cm)[1] - Wm ** 2) == np.sign(f[i]):
+                lo = mid
+            else:
+                hi = mid
+        keq, w2 = lund(*at(lo, i)[:2])
+    if not (w2 > 0 and keq > 0):
+        return none
+    w = math.sqrt(w2)
+    return dict(whirl=w, whirl_ratio=w / speed if speed else None, critical_mass=float(keq / w2),
+                stiffness=float(keq))
