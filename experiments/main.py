@@ -11,7 +11,9 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
 4. ``roller``: needle roller bearing (Figs. 2.14-2.21);
 5. ``journal``: visco-elastohydrodynamic journal bearing (Figs. 3.4-3.8);
 6. ``bodies``: bushings and liners of finite thickness against the infinite plane (the
-   thesis's test bearing as built, a pin in a thin bushing, a water-lubricated journal bearing).
+   thesis's test bearing as built, a pin in a thin bushing, a water-lubricated journal bearing);
+7. ``dynamics``: journal bearings' stiffness and damping versus whirl frequency (rigid against
+   the closed forms, a polymer liner, the thesis case) and the oil-whirl threshold.
 
 ``<out>/summary.md`` opens with what was computed and a table of every stage's checks
 (value, reference, tolerance, PASS/FAIL), defines the symbols, then gives each stage's
@@ -35,6 +37,7 @@ STAGES = [
     ("roller", "experiments.roller_figures", "main"),
     ("journal", "experiments.journal_figures", "main"),
     ("bodies", "experiments.bodies_figures", "main"),
+    ("dynamics", "experiments.journal_dynamics", "main"),
 ]
 
 

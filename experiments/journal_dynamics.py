@@ -1,0 +1,154 @@
+"""Dynamic coefficients of journal bearings (issue 15): rigid against the closed forms, a
+polymer-lined bearing over four decades of whirl frequency, the thesis case, and the oil-whirl
+threshold of a rigid rotor on them.
+
+Run::
+
+    PYTHONPATH=. python -m experiments.journal_dynamics [out_dir] [--quick]
+
+Cases (per unit length; bearings of length 0.05 m for the rotor):
+
+- rigid long bearing, R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s, pi film
+  (half-Sommerfeld): K and C at eps = 0.1..0.9 against
+  :func:`vjax.reference.long_bearing_coefficients`;
+- the same bearing with a 2 mm polymer liner bonded in a rigid housing (standard linear
+  solid: E0 = 0.3 GPa, Einf = 3 GPa, tau = 1 ms, nu = 0.4), at the load that puts the rigid
+  bearing at eps = 0.5, Reynolds conditions: K(Omega), C(Omega) for Omega = 1..1e4 rad/s
+  next to the rigid bearing's, and the whirl threshold of each (Lund's rigid rotor);
+- the thesis's HS case (docs/theory.md §11: SLS bore, omega_B = 0.2, omega_J = -0.4 rad/s):
+  K(Omega), C(Omega) over 1e-3..1e3 rad/s, where the bore's rotation makes modes m and -m
+  respond at different frequencies.
+
+Outputs: ``dynamics_rigid.csv`` (errors against the closed forms), ``dynamics_liner.csv``
+and ``dynamics_rigid_table.csv`` (ROSS-style tables: speed, frequency, kxx..cyy for 0.05 m),
+``dynamics_thesis.csv``, ``dynamics_coefficients.png``, ``dynamics_summary.txt``.
+"""
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+from experiments import _common
+
+_common.enable_x64()
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import vjax  # noqa: E402
+from vjax import JournalOptions, reference  # noqa: E402
+
+R, C, ETA, WJ, LENGTH = 0.05, 5e-5, 0.01, 100.0, 0.05
+V = 0.5 * WJ * (R - C)
+LINER = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
+
+
+def rigid_against_closed_form(n, eps_values):
+    rows = []
+    for eps in eps_values:
+        load = float(reference.long_bearing(eps, R, C, ETA, V, "half_sommerfeld")["load"])
+        co = vjax.journal_coefficients(R, C, ETA, load, [0.0, 50.0], omega_shaft=WJ, cavitation="half_sommerfeld",
+                                       options=JournalOptions(n=n))
+        K, Cd = (np.asarray(a[1]) for a in co.in_line_of_centres())
+        Kr, Cr = (np.asarray(a) for a in reference.long_bearing_coefficients(co.steady.eccentricity, R, C, ETA, V,
+                                                                            "half_sommerfeld"))
+        rows.append([eps, float(co.steady.eccentricity), *(K.ravel() / 1e9), *(Cd.ravel() / 1e6),
+                     np.abs(K - Kr).max() / np.abs(Kr).max(), np.abs(Cd - Cr).max() / np.abs(Cr).max()])
+    return rows
+
+
+def liner_sweep(n, whirl):
+    load = float(reference.long_bearing(0.5, R, C, ETA, V, "reynolds")["load"])
+    out = {}
+    for name, housing in (("rigid", None), ("polymer liner 2 mm", LINER)):
+        out[name] = vjax.journal_coefficients(R, C, ETA, load, whirl, housing=housing, omega_shaft=WJ,
+                                              options=JournalOptions(n=n))
+    return load, out
+
+
+def thesis_sweep(n, whirl):
+    sls = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
+    return vjax.journal_coefficients(0.1, 5e-4, 1e-3, 2.2e-3 * 1e6 * 0.1, whirl, housing=sls, omega_shaft=-0.4,
+                                     omega_housing=0.2, options=JournalOptions(n=n))
+
+
+def _plot(path, sweeps):
+    fig, axes = plt.subplots(2, len(sweeps), figsize=(5.5 * len(sweeps), 7.5), layout="constrained", squeeze=False)
+    for col, (title, curves) in enumerate(sweeps):
+        for label, co, style in curves:
+            W = np.asarray(co.whirl)
+            for row, (A, unit) in enumerate(((co.stiffness, "K (N/m²)"), (co.damping, "C (N s/m²)"))):
+                ax = axes[row, col]
+                for (i, j), color in zip(((0, 0), (0, 1), (1, 0), (1, 1)), ("C0", "C1", "C2", "C3")):
+                    ax.plot(W, np.asarray(A)[:, i, j], style, color=color,
+                            label=f"{'xy'[i]}{'xy'[j]}, {label}")
+                ax.set_xscale("log")
+                ax.set_yscale("symlog", linthresh=float(np.abs(np.asarray(A)).max()) * 1e-3)
+                ax.set_xlabel("whirl frequency Ω (rad/s)")
+                ax.set_ylabel(unit)
+        axes[0, col].set_title(title, fontsize=10)
+        axes[0, col].legend(fontsize=7, ncol=2)
+    _common.save_figure(fig, path)
+
+
+def main(out_dir="experiments/out", quick=False):
+    out = _common.setup(out_dir)
+    t0 = time.perf_counter()
+    n = 128 if quick else 512
+    rigid = rigid_against_closed_form(n, (0.1, 0.5, 0.9) if quick else (0.1, 0.3, 0.5, 0.7, 0.9))
+    head = ["eps target", "eps", "Kxx", "Kxy", "Kyx", "Kyy", "Cxx", "Cxy", "Cyx", "Cyy", "K rel. error",
+            "C rel. error"]
+    _common.write_csv(out / "dynamics_rigid.csv", head, rigid,
+                      comments=[f"rigid long bearing, pi film, n = {n}; line-of-centres frame; K in 1e9 N/m^2, "
+                                "C in 1e6 N s/m^2; errors: max |vjax - closed form| / max |closed form|"])
+    whirl = np.logspace(0, 4, 9 if quick else 17)
+    load, liner = liner_sweep(128 if quick else 256, whirl)
+    for name, co in liner.items():
+        co.save_csv(out / f"dynamics_{'rigid_table' if name == 'rigid' else 'liner'}.csv", length=LENGTH)
+    thresholds = {name: vjax.stability_threshold(co, length=LENGTH) for name, co in liner.items()}
+    thesis = thesis_sweep(64 if quick else 128, np.logspace(-3, 3, 13 if quick else 25))
+    _common.write_csv(out / "dynamics_thesis.csv", ["whirl", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"],
+                      [[w, *k.ravel(), *c.ravel()] for w, k, c in
+                       zip(np.asarray(thesis.whirl), np.asarray(thesis.stiffness), np.asarray(thesis.damping))],
+                      comments=["thesis HS case per unit length: K in N/m^2, C in N s/m^2, absolute frame"])
+    _plot(out / "dynamics_coefficients.png",
+          [(f"R = 50 mm, c = 50 µm, 100 rad/s, load {load:.3g} N/m: rigid (dashed) and a 2 mm polymer liner",
+            [("rigid", liner["rigid"], "--"), ("liner", liner["polymer liner 2 mm"], "-")]),
+           ("thesis HS case (SLS bore, ω_B = 0.2, ω_J = -0.4 rad/s)", [("thesis", thesis, "-")])])
+    lines = [f"Rigid long bearing, pi film, n = {n}: max relative error against the closed forms "
+             f"K {max(r[-2] for r in rigid):.2e}, C {max(r[-1] for r in rigid):.2e} (eps {rigid[0][0]}..{rigid[-1][0]})",
+             f"Bearing with a 2 mm polymer liner (SLS 0.3/3 GPa, tau = 1 ms) at {load:.4g} N/m, whirl 1..1e4 rad/s:"]
+    for name, co in liner.items():
+        th = thresholds[name]
+        K, Cd = np.asarray(co.stiffness), np.asarray(co.damping)
+        lines.append(f"  {name}: eps {float(co.steady.eccentricity):.4f}; Kyy {K[0, 1, 1]:.4g} -> {K[-1, 1, 1]:.4g} "
+                     f"N/m^2, Cyy {Cd[0, 1, 1]:.4g} -> {Cd[-1, 1, 1]:.4g} N s/m^2; whirl threshold: "
+                     + (f"whirl ratio {th['whirl_ratio']:.4f}, critical mass {th['critical_mass']:.4g} kg per "
+                        f"{LENGTH} m bearing" if th["whirl"] else "none (stable at any mass)"))
+    K = np.asarray(thesis.stiffness)
+    lines.append(f"Thesis HS case: Kyy {K[0, 1, 1]:.4g} N/m^2 at 1e-3 rad/s, {K[len(K) // 2, 1, 1]:.4g} at 1 rad/s, "
+                 f"{K[-1, 1, 1]:.4g} at 1e3 rad/s")
+    lines.append(f"total {time.perf_counter() - t0:.1f} s")
+    text = "\n".join(lines) + "\n"
+    _common.atomic_write_text(out / "dynamics_summary.txt", text)
+    print(text)
+    checks = (
+        _common.Check("rigid pi film: max relative error of K against the closed form", max(r[-2] for r in rigid),
+                      1e-2 if quick else 1e-3, 0, "vjax.reference.long_bearing_coefficients", "max"),
+        _common.Check("rigid pi film: max relative error of C against the closed form", max(r[-1] for r in rigid),
+                      1e-2 if quick else 1e-3, 0, "vjax.reference.long_bearing_coefficients", "max"),
+        _common.Check("rigid bearing: whirl frequency ratio at the threshold",
+                      thresholds["rigid"]["whirl_ratio"] or float("nan"), 0.5, 0, "oil whirl below half speed", "max"),
+    )
+    figures = (("dynamics_coefficients.png", "Stiffness and damping versus whirl frequency: rigid and polymer-lined "
+                                             "bearing, and the thesis HS case"),)
+    about = ("Dynamic coefficients K(Omega) + i Omega C(Omega) of journal bearings for rotor models: rigid bearings "
+             "against the closed-form pi-film coefficients, a polymer-lined bearing and the thesis case over four "
+             "decades of whirl frequency, and the oil-whirl threshold of a rigid rotor on them.")
+    return _common.StageReport(text, about, checks, figures)
+
+
+if __name__ == "__main__":
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv)
