@@ -227,3 +227,51 @@ def test_bad_input():
     co = journal_coefficients(R, C, ETA, 2e4, 1.0, **kw)
     with pytest.raises(ValueError, match="length"):
         co.table(length=-1.0)
+    with pytest.raises(ValueError, match="groove"):
+        journal_bearing(R, C, ETA, 2e4, groove="rotating", **kw)
+
+
+# ----------------------------------------------------------- a groove fixed in the bearing
+@pytest.mark.parametrize("supply_angle", [math.pi, 2.0, 4.0])
+def test_fixed_groove_full_sommerfeld(supply_angle):
+    """Full Sommerfeld: where the groove is only adds a constant pressure, which has no
+    resultant: the closed-form load, attitude and coefficients hold for any fixed groove."""
+    eps = 0.6
+    load = load_at(eps, "sommerfeld")
+    kw = dict(omega_shaft=WJ, cavitation="sommerfeld", groove="fixed", supply_angle=supply_angle,
+              options=JournalOptions(n=512))
+    co = journal_coefficients(R, C, ETA, load, [0.0, 40.0], **kw)
+    assert abs(float(co.steady.eccentricity) - eps) < 1e-4
+    assert abs(float(co.steady.attitude_angle) - np.pi / 2) < 1e-9
+    K, Cd = co.in_line_of_centres()
+    Kr, Cr = reference.long_bearing_coefficients(co.steady.eccentricity, R, C, ETA, V, "sommerfeld")
+    assert np.max(np.abs(np.asarray(K[1]) - np.asarray(Kr))) < 1e-4 * float(jnp.max(jnp.abs(Kr)))
+    assert np.max(np.abs(np.asarray(Cd[1]) - np.asarray(Cr))) < 1e-4 * float(jnp.max(jnp.abs(Cr)))
+
+
+def test_fixed_groove_reynolds():
+    """Reynolds conditions: a groove fixed at the widest gap of the turning-groove solution
+    gives that solution (to the grid's snapping of the groove); opposite the load it does not
+    (the groove then sits in the converging film and cuts the pressure off). The static
+    compliance along the load from the coefficients equals jax.jacfwd of the steady solution
+    with respect to the load's magnitude (turning the load would turn this groove with it)."""
+    load = load_at(0.6, "reynolds")
+    opt = JournalOptions(n=512)
+    loc = journal_bearing(R, C, ETA, load, omega_shaft=WJ, options=opt)
+    widest = float(loc.attitude_angle) + math.pi
+    fixed = journal_bearing(R, C, ETA, load, omega_shaft=WJ, groove="fixed", supply_angle=widest, options=opt)
+    assert abs(float(fixed.eccentricity) - float(loc.eccentricity)) < 2e-3
+    assert abs(float(fixed.attitude_angle) - float(loc.attitude_angle)) < 2e-3
+    opposite = journal_bearing(R, C, ETA, load, omega_shaft=WJ, groove="fixed", options=opt)
+    assert abs(float(opposite.eccentricity) - float(loc.eccentricity)) > 0.05
+    # static compliance along the load (downward)
+    kw = dict(omega_shaft=WJ, groove="fixed", supply_angle=2.0, options=JournalOptions(n=128))
+    co = journal_coefficients(R, C, ETA, load, 0.0, **kw)
+
+    def position(W):
+        s = journal_bearing(R, C, ETA, W, **kw)
+        g = s.line_of_centres_angle
+        return s.eccentricity * C * jnp.stack([jnp.cos(g), jnp.sin(g)])
+    along = np.asarray(jax.jacfwd(position)(load))            # load magnitude, direction -y
+    from_coefficients = np.linalg.solve(np.asarray(co.stiffness[0]), np.array([0.0, -1.0]))
+    assert np.max(np.abs(along - from_coefficients)) < 1e-7 * np.abs(along).max()

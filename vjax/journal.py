@@ -32,14 +32,20 @@ Finite volumes on the ring with ``cavitation`` "reynolds" (default, Swift-Stiebe
 Fischer-Burmeister complementarity), "half_sommerfeld" or "sommerfeld": :mod:`vjax.reynolds`.
 The entrainment speed is v = (omega_B R_B + omega_J R_J)/2.
 
-**Pressure datum.** A lubricant supply groove at ``supply_angle`` (measured in the
-line-of-centres frame, snapped to the nearest element; default pi, the largest rigid
-clearance, as in the classical theory) holds ``supply_pressure`` (gauge, Pa; default 0 =
-ambient) and supplies whatever flow the film needs. Without it the 360-degree problem
-with Reynolds conditions is degenerate: any constant can be added to the pressure of a
-full film and the cavitated state is not fixed, so there is no unique solution.
-The groove rotates with the line of centres (a groove fixed in the bearing at an
-angle beta from the load line is at beta - attitude_angle in this frame; not supported).
+**Pressure datum.** A lubricant supply groove at ``supply_angle`` (snapped to the nearest
+element) holds ``supply_pressure`` (gauge, Pa; default 0 = ambient) and supplies whatever
+flow the film needs. Without it the 360-degree problem with Reynolds conditions is
+degenerate: any constant can be added to the pressure of a full film and the cavitated
+state is not fixed, so there is no unique solution. Where the groove is (``groove=``):
+
+- ``"line_of_centres"`` (default, the classical theory): the groove turns with the line of
+  centres, ``supply_angle`` measured from it (default pi, the largest rigid clearance);
+- ``"fixed"``: the groove is fixed in the bearing, ``supply_angle`` measured from the load
+  direction (default pi: opposite the load, the usual design). The grid is then attached to
+  the load line and the line of centres turns over it: the film is
+  c (1 - eps cos(theta - attitude)) + u_B + u_J on the grid angle theta. The result's
+  arrays are on that grid, their ``theta`` given from the line of centres (theta_grid -
+  attitude) as for the default.
 
 Load control: the pressure force on the journal balances ``load`` (N/m, the external force
 on the journal); the eccentricity ratio ``eps`` and the attitude angle are unknowns.
@@ -102,6 +108,7 @@ from .operator import RingOperator, grid, memory_revolutions
 
 HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
+GROOVES = ("line_of_centres", "fixed")
 NESTED_MIN_N = 512  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
 
 
@@ -217,15 +224,22 @@ class _Config:
     groove: int
     options: JournalOptions
     tol: float
+    fixed_groove: bool = False     # grid on the load line (groove fixed in the bearing)
 
 
-def _guess(pr: _Params, n, speed_factor=1.0):
+def _offset(x, cfg: _Config):
+    """Angle of the line of centres on the grid: 0 on the line-of-centres grid, the
+    attitude angle on the load-line grid of a fixed groove."""
+    return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
+
+
+def _guess(pr: _Params, n, cfg: _Config, speed_factor=1.0):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude]."""
-    theta, _ = grid(n)
     v = pr.v * speed_factor
     G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(v) * pr.R**2)
     eps = jnp.minimum(reference.half_sommerfeld_eccentricity(G), 0.95)
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
+    theta = grid(n)[0] - (phi if cfg.fixed_groove else 0.0)
     p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
          / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
     # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
@@ -243,7 +257,7 @@ def _fields(x, pr: _Params, cfg: _Config):
     zero = jnp.zeros_like(p)
     uB = zero if pr.op_B is None else pr.op_B(p_load)
     uJ = zero if pr.op_J is None else pr.op_J(p_load)
-    h = pr.c * (1 - x[n] * jnp.cos(theta)) + uB + uJ
+    h = pr.c * (1 - x[n] * jnp.cos(theta - _offset(x, cfg))) + uB + uJ
     hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v)
     return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q)
 
@@ -254,17 +268,19 @@ def _equations(x, pr: _Params, cfg: _Config):
     f = _fields(x, pr, cfg)
     r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
     r = r.at[cfg.groove].set(x[cfg.groove] - pr.ps / pr.p_ref)
-    phi = x[n + 1]
     Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
     Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
-    bal = jnp.stack([Fx / pr.W + jnp.cos(phi), Fy / pr.W - jnp.sin(phi)])
+    # the film balances the load, which points along the grid angle offset - attitude
+    a = _offset(x, cfg) - x[n + 1]
+    bal = jnp.stack([Fx / pr.W + jnp.cos(a), Fy / pr.W + jnp.sin(a)])
     return jnp.concatenate([r, bal]), jnp.min(f["h"])
 
 
-def _effective_eps(h, c):
+def _effective_eps(h, c, offset=0.0):
+    """First Fourier mode of the film over c along the line of centres (at grid angle ``offset``)."""
     theta, _ = grid(h.shape[0])
-    a1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.cos(theta))
-    b1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.sin(theta))
+    a1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.cos(theta - offset))
+    b1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.sin(theta - offset))
     return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
 
 
@@ -279,7 +295,7 @@ def _newton(x0, pr, cfg):
     # a trust cap on the two geometric unknowns (eps, attitude)
     cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
     x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap)
-    physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c) > 0
+    physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c, _offset(x, cfg)) > 0
     result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
     return x, _solve.Stats(stats.iterations, stats.residual, result)
 
@@ -304,7 +320,7 @@ def _continuation(pr, cfg):
     a converged one lets it grow by 1.5. At most ``stages`` Newton solves."""
     n = pr.x0.shape[0] - 2
     q0, m0 = _staged(pr, 0.0)
-    x0, st0 = _newton(_guess(pr, n, m0), q0, cfg)
+    x0, st0 = _newton(_guess(pr, n, cfg, m0), q0, cfg)
 
     def cond(s):
         t, dt, x, its, nst, stats = s
@@ -363,7 +379,10 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
     CvJ = -R * jnp.sum(pres * central(f["uJ"]))
     CB = R * R * dth * jnp.sum(tauB) + CvB
     CJ = RJ * R * dth * jnp.sum(tauJ) + CvJ
-    # pressure force on the journal in the line-of-centres frame; the housing gets minus it
+    # pressure force on the journal in the line-of-centres frame (th: angles from it); the
+    # housing gets minus it
+    off = _offset(x, cfg)
+    th = th - off
     Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
     Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
     Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + eta * dU**2 / hf)
@@ -375,7 +394,7 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
         theta=th, pressure=pres, film=h, displacement=f["uB"], displacement_shaft=f["uJ"], force=force,
         torque=CB, torque_shaft=CJ, torque_shaft_about_O=CJ + eps * c * Fy, torque_viscoelastic=CvB,
         torque_viscoelastic_shaft=CvJ, friction_radius=jnp.abs(CB) / jnp.hypot(Fx, Fy), eccentricity=eps,
-        eccentricity_effective=_effective_eps(h, c), attitude_angle=phi,
+        eccentricity_effective=_effective_eps(h, c, off), attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * gamma)), min_film=jnp.min(h),
         # half-Sommerfeld: the zero crossing of the unclipped (full-Sommerfeld) pressure
         rupture_angle=reynolds.rupture_angle(p, th, pr.v, "reynolds" if cfg.cavitation == "reynolds"
@@ -394,8 +413,8 @@ def _run(pr: _Params, cfg: _Config):
 
 def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft=None, omega_shaft=0.0,
                     omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation: str = "reynolds",
-                    supply_angle=math.pi, supply_pressure=0.0, temperature=None, shift=None,
-                    initial: "JournalResult | None" = None, options: JournalOptions = JournalOptions(),
+                    supply_angle=math.pi, supply_pressure=0.0, groove: str = "line_of_centres", temperature=None,
+                    shift=None, initial: "JournalResult | None" = None, options: JournalOptions = JournalOptions(),
                     throw: bool = True) -> JournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
@@ -415,8 +434,11 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       memory: "periodic", "thesis" or a number of revolutions (see :mod:`vjax.operator`).
       cavitation: "reynolds" (default), "half_sommerfeld" or "sommerfeld".
-      supply_angle: groove position in the line-of-centres frame (rad, default pi).
+      supply_angle: groove position (rad, default pi), from the line of centres or, with
+        ``groove="fixed"``, from the load direction (pi: opposite the load).
       supply_pressure: groove gauge pressure (Pa, default 0).
+      groove: "line_of_centres" (the groove turns with it, the classical theory) or "fixed"
+        (in the bearing); see the module docstring.
       temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``.
       initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
       options: :class:`JournalOptions` (grid, tolerance, iteration caps, strategy; static).
@@ -430,7 +452,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     """
     pr, cfg, housing, shaft = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
                                      load_angle, memory, cavitation, supply_angle, supply_pressure, temperature,
-                                     shift, options)
+                                     shift, options, groove)
     n, p_ref, dtype = options.n, pr.p_ref, pr.x0.dtype
     if initial is not None:
         if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
@@ -443,19 +465,19 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         coarse = journal_bearing(
             R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
-            supply_angle=supply_angle, supply_pressure=supply_pressure,
+            supply_angle=supply_angle, supply_pressure=supply_pressure, groove=groove,
             options=dataclasses.replace(options, n=n // 4), throw=False)
-        p0 = jnp.interp(grid(n)[0], coarse.theta, coarse.pressure, period=2 * jnp.pi)
+        p0 = jnp.interp(grid(n)[0], coarse.theta - coarse.theta[0], coarse.pressure, period=2 * jnp.pi)
         x0 = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
     else:
-        x0 = _guess(pr, n)
+        x0 = _guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
     _solve.report("journal_bearing", sol, throw)
     return sol
 
 
 def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
-           cavitation, supply_angle, supply_pressure, temperature, shift, options):
+           cavitation, supply_angle, supply_pressure, temperature, shift, options, groove="line_of_centres"):
     """Checked arguments of :func:`journal_bearing` -> (parameters with a zero start, config,
     housing body, shaft body) - the bodies at ``temperature``, None when rigid."""
     housing = as_body("housing", housing, hole, HOUSINGS)
@@ -466,6 +488,7 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
                    supply_angle=supply_angle)
     _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
     _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    _checks.one_of("groove", groove, GROOVES)
     memory_revolutions(memory)
     Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
@@ -484,7 +507,8 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     n = options.n
     dtype = jnp.result_type(float)
     tol = options.tol if options.tol is not None else (1e-10 if dtype == jnp.float64 else 1e-4)
-    cfg = _Config(cavitation, int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n, options, float(tol))
+    cfg = _Config(cavitation, int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n, options, float(tol),
+                  groove == "fixed")
 
     f = lambda v: jnp.asarray(v, dtype)
     W = jnp.hypot(Wx, Wy)

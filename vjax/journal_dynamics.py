@@ -38,9 +38,13 @@ rotating pattern (zero for elastic bodies and for Omega = 0). The force in the f
 is the turning frame's plus the steady force turned by dgamma. A dense complex solve per
 Omega (n x n): fine up to n ~ 2048.
 
-The pressure datum is the groove, which turns with the line of centres (as in
-:func:`vjax.journal_bearing`); memory is the periodic steady state (a truncated load history
-has no steady small-motion response).
+The pressure datum is the groove. One that turns with the line of centres (the default of
+:func:`vjax.journal_bearing`) stays on its element in the turning frame. One fixed in the
+bearing (``groove="fixed"``) is on the grid of the load line, fixed in space: there the
+motion changes the film directly, -(dX cos theta + dY sin theta), and its rate is the squeeze
+(the turning frame is not needed, and the linearization is again the exact derivative of the
+steady model). Memory is the periodic steady state (a truncated load history has no steady
+small-motion response).
 """
 from __future__ import annotations
 
@@ -57,7 +61,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _solve, reynolds
-from .journal import JournalOptions, JournalResult, _Config, _equations, _newton, _Params, _setup, journal_bearing
+from .journal import JournalOptions, JournalResult, _Config, _equations, _newton, _offset, _Params, _setup, journal_bearing
 from .operator import grid
 
 __all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
@@ -129,21 +133,32 @@ class JournalCoefficients:
         return path
 
 
-def _turning_frame_equations(pz, U, Udot, de, de_dot, dgamma_dot, x0, pr: _Params, cfg: _Config):
-    """Scaled cell equations (with the groove datum) and the film force on the journal in the
-    frame turning with the line of centres, for pressure ``pz`` (/p_ref), body displacement
-    ``U`` (m, u_B + u_J) and its rate ``Udot`` (m/s), eccentricity change ``de`` (m) and rate
-    ``de_dot`` (m/s), rotation rate of the line of centres ``dgamma_dot`` (rad/s)."""
+def _perturbed_equations(pz, U, Udot, motion, x0, pr: _Params, cfg: _Config):
+    """Scaled cell equations (with the groove datum) and the film force on the journal (grid
+    axes) for pressure ``pz`` (/p_ref), body displacement ``U`` (m, u_B + u_J) and its rate
+    ``Udot`` (m/s), and a journal motion ``motion`` = (dX, dY, dX/dt, dY/dt) (m, m/s) in the
+    grid's axes. Grid on the line of centres (a groove turning with it): the frame turns with
+    the line of centres, dX changes the eccentricity, dY only turns the frame (no film
+    change) and its rate lowers the entrainment speed by R dgamma/dt = R (dY/dt) / e. Grid on
+    the load line (a fixed groove): the frame is fixed and the motion changes the film."""
     n = pz.shape[0]
     theta, alpha = grid(n)
+    cos, sin = jnp.cos(theta), jnp.sin(theta)
     p = pz * pr.p_ref
-    h = pr.c * (1 - x0[n] * jnp.cos(theta)) - de * jnp.cos(theta) + U
-    hdot = -de_dot * jnp.cos(theta) + Udot
-    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v - pr.R * dgamma_dot)
+    h = pr.c * (1 - x0[n] * jnp.cos(theta - _offset(x0, cfg))) + U
+    if cfg.fixed_groove:
+        h = h - motion[0] * cos - motion[1] * sin
+        hdot = -motion[2] * cos - motion[3] * sin + Udot
+        v = pr.v
+    else:
+        h = h - motion[0] * cos
+        hdot = -motion[2] * cos + Udot
+        v = pr.v - pr.R * motion[3] / (x0[n] * pr.c)
+    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v)
     r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=pr.R * hdot)
     r = r.at[cfg.groove].set(pz[cfg.groove] - pr.ps / pr.p_ref)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
-    F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * jnp.cos(theta)), jnp.sum(p_load * jnp.sin(theta))])
+    F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * cos), jnp.sum(p_load * sin)])
     return r, F
 
 
@@ -169,10 +184,10 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
         if op is not None:
             U0 = U0 + op(reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation))
 
-    def eqs(pz, U, Udot, s):
-        return _turning_frame_equations(pz, U, Udot, s[0], s[1], s[2], x0, pr, cfg)
+    def eqs(pz, U, Udot, motion):
+        return _perturbed_equations(pz, U, Udot, motion, x0, pr, cfg)
 
-    args = (pz0, U0, zero, jnp.zeros(3, x0.dtype))
+    args = (pz0, U0, zero, jnp.zeros(4, x0.dtype))
     F0 = eqs(*args)[1]
     J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(*args)
     # d p_load = w dp (w: the pressurized fraction of each cell under half-Sommerfeld) and the
@@ -180,7 +195,7 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
     p_load0 = reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation)
     load_slope = reynolds.load_slope(pz0, cfg.cavitation)
     G_p = -pr.R * (2 * jnp.pi / n) * pr.p_ref * load_slope * jnp.stack([jnp.cos(theta), jnp.sin(theta)])
-    dp_load0 = jnp.fft.ifft(1j * jnp.fft.fftfreq(n, 1.0 / n) * jnp.fft.fft(p_load0))   # d p_load / d phi
+    dp_load0 = jnp.fft.ifft(1j * jnp.fft.fftfreq(n, 1.0 / n) * jnp.fft.fft(p_load0))   # d p_load / d theta
     dp_load0 = dp_load0.at[n // 2].set(0.0) if n % 2 == 0 else dp_load0   # Nyquist: no derivative
 
     def one(W):
@@ -193,23 +208,27 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
                 rot = rot + jnp.fft.ifft((sym0 - sym) * jnp.fft.fft(dp_load0))
         GU = J_U + 1j * W * J_Ud
         A = J_p + GU @ (M * (load_slope * pr.p_ref)[None, :])
-        # right-hand sides per unit journal motion dX (along the line of centres), dY
-        b_X = J_s[:, 0] + 1j * W * J_s[:, 1]
-        b_Y = (1j * W * J_s[:, 2] + GU @ rot) / e
+        # right-hand sides per unit journal motion dX, dY (grid axes)
+        b_X = J_s[:, 0] + 1j * W * J_s[:, 2]
+        b_Y = J_s[:, 1] + 1j * W * J_s[:, 3]
+        if not cfg.fixed_groove:     # the turning steady deformation lags in a viscoelastic body
+            b_Y = b_Y + GU @ rot / e
         dpz = jnp.linalg.solve(A, -jnp.stack([b_X, b_Y], axis=1))
-        dF = G_p @ dpz                                          # turning frame
-        dF = dF.at[:, 1].add(jnp.stack([-F0[1], F0[0]]) / e)     # the steady force turned by dY / e
+        dF = G_p @ dpz
+        if not cfg.fixed_groove:     # the steady force turns with the frame by dY / e
+            dF = dF.at[:, 1].add(jnp.stack([-F0[1], F0[0]]) / e)
         return -dF
 
-    Z_loc = jax.vmap(one)(whirl)
-    g = pr.load_angle + phi
+    Z_grid = jax.vmap(one)(whirl)
+    g = pr.load_angle + phi - _offset(x0, cfg)     # the grid's absolute angle
     R = jnp.array([[jnp.cos(g), -jnp.sin(g)], [jnp.sin(g), jnp.cos(g)]])
-    return jnp.einsum("ij,mjk,lk->mil", R, Z_loc, R)
+    return jnp.einsum("ij,mjk,lk->mil", R, Z_grid, R)
 
 
 def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None,
                          omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, cavitation: str = "reynolds",
-                         supply_angle=math.pi, supply_pressure=0.0, temperature=None, shift=None,
+                         supply_angle=math.pi, supply_pressure=0.0, groove: str = "line_of_centres", temperature=None,
+                         shift=None,
                          initial: JournalResult | None = None, options: JournalOptions = JournalOptions(),
                          throw: bool = True) -> JournalCoefficients:
     """Stiffness and damping of a (visco)elastic journal bearing at whirl frequencies ``whirl``.
@@ -232,10 +251,10 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     sol = journal_bearing(R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
                           omega_housing=omega_housing, load_angle=load_angle, memory="periodic",
                           cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
-                          temperature=temperature, shift=shift, initial=initial, options=options, throw=throw)
+                          groove=groove, temperature=temperature, shift=shift, initial=initial, options=options, throw=throw)
     pr, cfg, hb, sb = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
                              load_angle, "periodic", cavitation, supply_angle, supply_pressure, temperature, shift,
-                             options)
+                             options, groove)
     x0 = jnp.concatenate([sol.pressure / pr.p_ref, jnp.stack([sol.eccentricity, sol.attitude_angle])])
     if cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
         pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
