@@ -15,13 +15,16 @@ Cases (per unit length; bearings of length 0.05 m for the rotor):
   solid: E0 = 0.3 GPa, Einf = 3 GPa, tau = 1 ms, nu = 0.4), at the load that puts the rigid
   bearing at eps = 0.5, Reynolds conditions: K(Omega), C(Omega) for Omega = 1..1e4 rad/s
   next to the rigid bearing's, and the whirl threshold of each (Lund's rigid rotor);
+- mass-conserving cavitation (``cavitation="jfo"``) against Reynolds conditions on the rigid
+  bearing with a groove fixed 2 rad from the load direction (in the diverging film): the
+  pressure and film fraction, and K(Omega), which for JFO depends on the whirl frequency;
 - the thesis's HS case (docs/theory.md §11: SLS bore, omega_B = 0.2, omega_J = -0.4 rad/s):
   K(Omega), C(Omega) over 1e-3..1e3 rad/s, where the bore's rotation makes modes m and -m
   respond at different frequencies.
 
 Outputs: ``dynamics_rigid.csv`` (errors against the closed forms), ``dynamics_liner.csv``
 and ``dynamics_rigid_table.csv`` (ROSS-style tables: speed, frequency, kxx..cyy for 0.05 m),
-``dynamics_thesis.csv``, ``dynamics_coefficients.png``, ``dynamics_summary.txt``.
+``dynamics_thesis.csv``, ``dynamics_coefficients.png``, ``dynamics_jfo.png``, ``dynamics_summary.txt``.
 """
 from __future__ import annotations
 
@@ -73,6 +76,43 @@ def thesis_sweep(n, whirl):
                                      omega_housing=0.2, options=JournalOptions(n=n))
 
 
+def jfo_against_reynolds(n, whirl, supply_angle=2.0, load=1e5):
+    """Steady solutions and coefficients under JFO and Reynolds conditions, groove fixed in
+    the bearing at ``supply_angle`` from the load direction."""
+    return {cav: vjax.journal_coefficients(R, C, ETA, load, whirl, omega_shaft=WJ, cavitation=cav, groove="fixed",
+                                           supply_angle=supply_angle, options=JournalOptions(n=n))
+            for cav in ("reynolds", "jfo")}
+
+
+def _plot_jfo(path, cases):
+    fig, (ax, axk) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
+    axf = ax.twinx()
+    for (cav, co), style in zip(cases.items(), ("--", "-")):
+        s = co.steady
+        from_load = (np.asarray(s.theta) + float(s.attitude_angle)) % (2 * np.pi)
+        order = np.argsort(from_load)
+        th = np.degrees(from_load[order])
+        ax.plot(th, np.asarray(s.pressure)[order] / 1e6, style, color="C0", label=f"pressure, {cav}")
+        axf.plot(th, np.asarray(s.film_fraction)[order], style, color="C3", label=f"film fraction, {cav}")
+        W = np.asarray(co.whirl)
+        for (i, j), color in zip(((0, 0), (0, 1), (1, 0), (1, 1)), ("C0", "C1", "C2", "C3")):
+            axk.plot(W, np.asarray(co.stiffness)[:, i, j] / 1e9, style, color=color, label=f"K{'xy'[i]}{'xy'[j]}, {cav}")
+    ax.axvline(np.degrees(2.0), color="0.5", lw=0.8)
+    ax.set_xlabel("angle from the load direction (deg); groove at the grey line")
+    ax.set_ylabel("pressure (MPa)")
+    axf.set_ylabel("liquid film fraction")
+    axf.set_ylim(0, 1.05)
+    ax.legend(loc="upper left", fontsize=7)
+    axf.legend(loc="upper right", fontsize=7)
+    ax.set_title("groove fixed 2 rad from the load: JFO (solid) re-forms later", fontsize=10)
+    axk.set_xscale("symlog", linthresh=1.0)
+    axk.set_xlabel("whirl frequency Ω (rad/s)")
+    axk.set_ylabel("K (1e9 N/m²)")
+    axk.legend(fontsize=7, ncol=2)
+    axk.set_title("stiffness: Reynolds (dashed) flat, JFO (solid) with the cavity's delay", fontsize=10)
+    _common.save_figure(fig, path)
+
+
 def _plot(path, sweeps):
     fig, axes = plt.subplots(2, len(sweeps), figsize=(5.5 * len(sweeps), 7.5), layout="constrained", squeeze=False)
     for col, (title, curves) in enumerate(sweeps):
@@ -116,6 +156,8 @@ def main(out_dir="experiments/out", quick=False):
           [(f"R = 50 mm, c = 50 µm, 100 rad/s, load {load:.3g} N/m: rigid (dashed) and a 2 mm polymer liner",
             [("rigid", liner["rigid"], "--"), ("liner", liner["polymer liner 2 mm"], "-")]),
            ("thesis HS case (SLS bore, ω_B = 0.2, ω_J = -0.4 rad/s)", [("thesis", thesis, "-")])])
+    jfo = jfo_against_reynolds(128 if quick else 256, np.concatenate([[0.0], np.logspace(-1, 3, 9 if quick else 17)]))
+    _plot_jfo(out / "dynamics_jfo.png", jfo)
     lines = [f"Rigid long bearing, pi film, n = {n}: max relative error against the closed forms "
              f"K {max(r[-2] for r in rigid):.2e}, C {max(r[-1] for r in rigid):.2e} (eps {rigid[0][0]}..{rigid[-1][0]})",
              f"Bearing with a 2 mm polymer liner (SLS 0.3/3 GPa, tau = 1 ms) at {load:.4g} N/m, whirl 1..1e4 rad/s:"]
@@ -126,6 +168,13 @@ def main(out_dir="experiments/out", quick=False):
                      f"N/m^2, Cyy {Cd[0, 1, 1]:.4g} -> {Cd[-1, 1, 1]:.4g} N s/m^2; whirl threshold: "
                      + (f"whirl ratio {th['whirl_ratio']:.4f}, critical mass {th['critical_mass']:.4g} kg per "
                         f"{LENGTH} m bearing" if th["whirl"] else "none (stable at any mass)"))
+    rey_s, jfo_s = jfo["reynolds"].steady, jfo["jfo"].steady
+    flow = float(np.mean(jfo_s.film * jfo_s.film_fraction)) * V      # the order of the film's flow
+    Kj = np.asarray(jfo["jfo"].stiffness)
+    lines.append(f"Groove fixed 2 rad from the load (1e5 N/m): eps {float(rey_s.eccentricity):.4f} (Reynolds), "
+                 f"{float(jfo_s.eccentricity):.4f} (JFO); net groove flow {float(rey_s.supply_flow):.3e} (Reynolds: "
+                 f"its cavity loses flow), {float(jfo_s.supply_flow):.1e} m^2/s (JFO) of a film flow ~{flow:.3e}; "
+                 f"JFO Kyy {Kj[0, 1, 1]:.4g} N/m^2 at Omega = 0, {Kj[-1, 1, 1]:.4g} at 1e3 rad/s")
     K = np.asarray(thesis.stiffness)
     lines.append(f"Thesis HS case: Kyy {K[0, 1, 1]:.4g} N/m^2 at 1e-3 rad/s, {K[len(K) // 2, 1, 1]:.4g} at 1 rad/s, "
                  f"{K[-1, 1, 1]:.4g} at 1e3 rad/s")
@@ -140,9 +189,13 @@ def main(out_dir="experiments/out", quick=False):
                       1e-2 if quick else 1e-3, 0, "vjax.reference.long_bearing_coefficients", "max"),
         _common.Check("rigid bearing: whirl frequency ratio at the threshold",
                       thresholds["rigid"]["whirl_ratio"] or float("nan"), 0.5, 0, "oil whirl below half speed", "max"),
+        _common.Check("JFO: net groove flow over the film flow (mass conservation)", abs(float(jfo_s.supply_flow)) / flow,
+                      1e-9, 0, "zero: no side leakage", "max"),
     )
     figures = (("dynamics_coefficients.png", "Stiffness and damping versus whirl frequency: rigid and polymer-lined "
-                                             "bearing, and the thesis HS case"),)
+                                             "bearing, and the thesis HS case"),
+               ("dynamics_jfo.png", "Mass-conserving (JFO) against Reynolds cavitation with a groove fixed in the "
+                                    "bearing: pressure, film fraction and stiffness versus whirl frequency"))
     about = ("Dynamic coefficients K(Omega) + i Omega C(Omega) of journal bearings for rotor models: rigid bearings "
              "against the closed-form pi-film coefficients, a polymer-lined bearing and the thesis case over four "
              "decades of whirl frequency, and the oil-whirl threshold of a rigid rotor on them.")

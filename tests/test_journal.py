@@ -243,7 +243,7 @@ def test_jit_vmap_and_warm_start():
 @pytest.mark.parametrize("kwargs, name", [
     (dict(radial_clearance=0.2), "radial_clearance"),
     (dict(viscosity=-1.0), "viscosity"),
-    (dict(cavitation="jfo"), "cavitation"),
+    (dict(cavitation="elrod"), "cavitation"),
     (dict(housing=vjax.disc(SLS)), "housing"),
     (dict(load=[0.0, 0.0]), "load"),
     (dict(omega_shaft=0.0), "entrainment"),

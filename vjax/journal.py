@@ -29,7 +29,11 @@ not ``eccentricity_effective`` (first Fourier mode of h over c).
 Reynolds equation and cavitation (Eq. 3.41)
 -------------------------------------------
 Finite volumes on the ring with ``cavitation`` "reynolds" (default, Swift-Stieber as a
-Fischer-Burmeister complementarity), "half_sommerfeld" or "sommerfeld": :mod:`vjax.reynolds`.
+Fischer-Burmeister complementarity), "jfo" (mass-conserving Jakobsson-Floberg-Olsson /
+Elrod-Adams conditions: pressure and film fraction as one universal unknown),
+"half_sommerfeld" or "sommerfeld": :mod:`vjax.reynolds`. With "jfo" the cavity is a
+striated film of liquid fraction ``film_fraction`` < 1 that carries only the Couette flow of
+its liquid, so the shear stress of the Couette flow there acts on that fraction too.
 The entrainment speed is v = (omega_B R_B + omega_J R_J)/2.
 
 **Pressure datum.** A lubricant supply groove at ``supply_angle`` (snapped to the nearest
@@ -78,7 +82,10 @@ Solver
 ------
 Unknowns p/p_ref (n values), eps, attitude: n + 2 equations (cell balances / FB, groove
 datum, two force components). The core's damped Newton (:func:`vjax._solve.newton`) with the
-exact dense AD Jacobian (steps giving h <= 0 are rejected). ``options.strategy="auto"``
+exact dense AD Jacobian (steps giving h <= 0 are rejected). The bodies' deformation takes
+its Fourier mode 1 (a rigid translation) from the load, which the film force equals at the
+root, not from the iterate's pressure: the same root, without a translation of up to
+hundreds of clearances for Newton to find (docs/theory.md §10). ``options.strategy="auto"``
 first tries Newton from the rigid half-Sommerfeld estimate (for n >= 512 from the solution on
 a 4x coarser grid, interpolated; or from ``initial``, e.g. the previous point of a sweep); if
 it fails or lands on the spurious branch (effective eccentricity <= 0: the supply at the
@@ -109,6 +116,7 @@ from .operator import RingOperator, grid, memory_revolutions
 HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
 GROOVES = ("line_of_centres", "fixed")
+JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
 NESTED_MIN_N = 512  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
 
 
@@ -148,7 +156,8 @@ class JournalResult(_scene.SceneResult):
     into the journal).
 
     ``force``: pressure force of the film on the housing (N/m, absolute x, y; the load at
-    equilibrium). ``torque``: by the fluid on the housing about O; ``torque_shaft``: on the
+    equilibrium). ``film_fraction``: liquid fraction of the film (1 in a full film, below 1
+    in a "jfo" cavity; 1 everywhere for the other conditions). ``torque``: by the fluid on the housing about O; ``torque_shaft``: on the
     journal about O'; ``torque_shaft_about_O``; ``torque_viscoelastic``,
     ``torque_viscoelastic_shaft``: the pressure-on-deformed-profile parts (N m/m, CCW
     positive; see the module docstring). ``friction_radius``: |torque|/|force| (m).
@@ -172,6 +181,7 @@ class JournalResult(_scene.SceneResult):
     film: jax.Array
     displacement: jax.Array
     displacement_shaft: jax.Array
+    film_fraction: jax.Array
     force: jax.Array
     torque: jax.Array
     torque_shaft: jax.Array
@@ -233,39 +243,57 @@ def _offset(x, cfg: _Config):
     return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
 
 
-def _guess(pr: _Params, n, cfg: _Config, speed_factor=1.0):
-    """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude]."""
-    v = pr.v * speed_factor
+def _guess(pr: _Params, n, cfg: _Config):
+    """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
+    moved with the bodies' rigid displacement under the load."""
+    v = pr.v
     G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(v) * pr.R**2)
     eps = jnp.minimum(reference.half_sommerfeld_eccentricity(G), 0.95)
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
-    theta = grid(n)[0] - (phi if cfg.fixed_groove else 0.0)
+    # The load's mode-1 pressure moves the bodies rigidly by D (complex, m): place the journal
+    # so that the film keeps the rigid estimate's shape and its angle to the load,
+    # c eps e^{i beta} = c eps_r + D e^{i phi_r} = z (beta: angle of the film's minimum from
+    # the line of centres), and let the pressure follow the film.
+    s1 = sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
+    z = pr.c * eps + s1 * pr.W / (pr.R * jnp.pi) * jnp.exp(1j * phi)
+    film_line = phi if cfg.fixed_groove else jnp.angle(z)      # grid angle of the film's minimum
+    theta = grid(n)[0] - film_line
     p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
          / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
+    eps, phi = jnp.abs(z) / pr.c, phi - jnp.angle(z)
     # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
     # Newton step can only grow the pressurized zone by one cell per iteration.
     p = jnp.maximum(p, 0.0) / pr.p_ref + 0.1
     return jnp.concatenate([p, jnp.stack([eps, phi])])
 
 
-def _fields(x, pr: _Params, cfg: _Config):
-    """Pressure, film, displacements and face fluxes for unknowns x."""
+def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0):
+    """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
+    "jfo" switch, see :func:`_solver`)."""
     n = x.shape[0] - 2
     theta, alpha = grid(n)
-    p = x[:n] * pr.p_ref
+    pz, fraction = reynolds.pressure_and_fraction(x[:n], cfg.cavitation, smoothing)
+    p = pz * pr.p_ref
     p_load = reynolds.load_pressure(p, cfg.cavitation)
+    # Mode 1 of the loading pressure is the film force, which equals the load at equilibrium:
+    # take it from the load (it moves the bodies rigidly, by up to hundreds of clearances for a
+    # soft bore) so that Newton does not have to find it - the same root, a far milder system.
+    P = jnp.fft.rfft(p_load)
+    P = P.at[1].set(pr.W * jnp.exp(-1j * (_offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
+    deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
     zero = jnp.zeros_like(p)
-    uB = zero if pr.op_B is None else pr.op_B(p_load)
-    uJ = zero if pr.op_J is None else pr.op_J(p_load)
+    uB = zero if pr.op_B is None else deform(pr.op_B)
+    uJ = zero if pr.op_J is None else deform(pr.op_J)
     h = pr.c * (1 - x[n] * jnp.cos(theta - _offset(x, cfg))) + uB + uJ
-    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v)
-    return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q)
+    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
+    return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
+                fraction=fraction)
 
 
-def _equations(x, pr: _Params, cfg: _Config):
+def _equations(x, pr: _Params, cfg: _Config, smoothing=0.0):
     """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
     n = x.shape[0] - 2
-    f = _fields(x, pr, cfg)
+    f = _fields(x, pr, cfg, smoothing)
     r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
     r = r.at[cfg.groove].set(x[cfg.groove] - pr.ps / pr.p_ref)
     Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
@@ -284,11 +312,11 @@ def _effective_eps(h, c, offset=0.0):
     return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
 
 
-def _newton(x0, pr, cfg):
+def _newton(x0, pr, cfg, smoothing=0.0):
     """The core's Newton on the equations (films must stay positive): x, Stats (with the
     physical branch folded into the result)."""
     def equations(x, state):
-        r, hmin = _equations(x, pr, cfg)
+        r, hmin = _equations(x, pr, cfg, smoothing)
         return r, state, hmin > 0
 
     n = x0.shape[0] - 2
@@ -319,8 +347,8 @@ def _continuation(pr, cfg):
     """Adaptive continuation in t (see :func:`_staged`): a failed stage halves the step,
     a converged one lets it grow by 1.5. At most ``stages`` Newton solves."""
     n = pr.x0.shape[0] - 2
-    q0, m0 = _staged(pr, 0.0)
-    x0, st0 = _newton(_guess(pr, n, cfg, m0), q0, cfg)
+    q0, _ = _staged(pr, 0.0)
+    x0, st0 = _newton(_guess(q0, n, cfg), q0, cfg)
 
     def cond(s):
         t, dt, x, its, nst, stats = s
@@ -342,7 +370,47 @@ def _continuation(pr, cfg):
     return x, _solve.Stats(its, stats.residual, result), nst
 
 
+def _jfo_start(x, pr: _Params, cfg: _Config):
+    """JFO unknowns from a Reynolds solution x: its pressure where positive; in the cavity the
+    film fraction that carries the flow leaving the pressurized film (the flux at the
+    pressure peak) as a Couette flow, f = Q / (v h), as the universal variable f - 1."""
+    n = x.shape[0] - 2
+    f = _fields(x, pr, dataclasses.replace(cfg, cavitation="reynolds"))
+    flow = f["q"][jnp.argmax(f["p"])]
+    fraction = jnp.clip(flow / (pr.v * f["h"]), 0.0, 1.0)
+    cavity = f["p"] <= 1e-9 * jnp.max(f["p"])
+    return x.at[:n].set(jnp.where(cavity, fraction - 1.0, x[:n]))
+
+
 def _solver(pr: _Params, cfg: _Config):
+    """Steady solution; "jfo" starts from the Reynolds solution (the same pressure where the
+    film re-forms only at the groove), whose cavity it fills with the mass-conserving film."""
+    if cfg.cavitation != "jfo":
+        return _solve_steady(pr, cfg)
+    n = pr.x0.shape[0] - 2
+    start = dataclasses.replace(pr, x0=pr.x0.at[:n].max(0.0))
+    xr, (st_r, stages) = _solve_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
+    x0 = _jfo_start(xr, pr, cfg)
+    x, st = _newton(x0, pr, cfg)
+
+    def smoothed(_):
+        # Where the film re-forms before the groove, the Reynolds start can be far from the
+        # JFO solution and the semismooth Newton stall on the switch's kinks: follow the
+        # smoothed switch p = (u + sqrt(u^2 + mu^2))/2 from mu = 0.1 down to 0 instead.
+        def stage(carry, mu):
+            x, its = carry
+            x1, st1 = _newton(x, pr, cfg, mu)
+            return (jnp.where(st1.result == _solve.NONFINITE, x, x1), its + st1.iterations), None
+        (x1, its), _ = jax.lax.scan(stage, (x0, st.iterations), jnp.asarray(JFO_SMOOTHING, x0.dtype))
+        x2, st2 = _newton(x1, pr, cfg)
+        return x2, _solve.Stats(its + st2.iterations, st2.residual, st2.result)
+
+    x, st = jax.lax.cond(st.converged, lambda _: (x, st), smoothed, None)
+    result = jnp.where(st_r.converged, st.result, st_r.result)
+    return x, (_solve.Stats(st_r.iterations + st.iterations, st.residual, result), stages)
+
+
+def _solve_steady(pr: _Params, cfg: _Config):
     compliant = pr.op_B is not None or pr.op_J is not None
     x0 = jax.lax.stop_gradient(pr.x0)
     strategy = cfg.options.strategy if compliant else "newton"
@@ -372,8 +440,10 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
     eps, phi = x[n], x[n + 1]
     pres = f["p_load"]
     dU = pr.omega_B * R - pr.omega_J * RJ
-    tauB = -0.5 * hf * dpds - eta * dU / hf
-    tauJ = -0.5 * hf * dpds + eta * dU / hf
+    # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
+    liquid = reynolds.face_fraction(f["fraction"], pr.v)
+    tauB = -0.5 * hf * dpds - liquid * eta * dU / hf
+    tauJ = -0.5 * hf * dpds + liquid * eta * dU / hf
     central = lambda u: 0.5 * (jnp.roll(u, -1) - jnp.roll(u, 1))
     CvB = -R * jnp.sum(pres * central(f["uB"]))
     CvJ = -R * jnp.sum(pres * central(f["uJ"]))
@@ -385,20 +455,21 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
     th = th - off
     Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
     Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
-    Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + eta * dU**2 / hf)
+    Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + liquid * eta * dU**2 / hf)
     g = cfg.groove
     gamma = pr.load_angle + phi
     rot = jnp.array([[jnp.cos(gamma), -jnp.sin(gamma)], [jnp.sin(gamma), jnp.cos(gamma)]])
     force = -rot @ jnp.stack([Fx, Fy])
     return JournalResult(
-        theta=th, pressure=pres, film=h, displacement=f["uB"], displacement_shaft=f["uJ"], force=force,
+        theta=th, pressure=pres, film=h, displacement=f["uB"], displacement_shaft=f["uJ"],
+        film_fraction=f["fraction"], force=force,
         torque=CB, torque_shaft=CJ, torque_shaft_about_O=CJ + eps * c * Fy, torque_viscoelastic=CvB,
         torque_viscoelastic_shaft=CvJ, friction_radius=jnp.abs(CB) / jnp.hypot(Fx, Fy), eccentricity=eps,
         eccentricity_effective=_effective_eps(h, c, off), attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * gamma)), min_film=jnp.min(h),
         # half-Sommerfeld: the zero crossing of the unclipped (full-Sommerfeld) pressure
-        rupture_angle=reynolds.rupture_angle(p, th, pr.v, "reynolds" if cfg.cavitation == "reynolds"
-                                             else "sommerfeld"),
+        rupture_angle=reynolds.rupture_angle(p, th, pr.v, "sommerfeld" if cfg.cavitation == "half_sommerfeld"
+                                             else cfg.cavitation),
         dissipation_fluid=Df, dissipation_housing=-pr.omega_B * CvB, dissipation_shaft=-pr.omega_J * CvJ,
         supply_flow=f["q"][g] - f["q"][(g - 1) % n], hersey=eta * pr.v * R / pr.W,
         iterations=stats.iterations, stages=stages, residual=stats.residual, result=stats.result)
@@ -433,7 +504,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       omega_shaft, omega_housing: angular velocities of journal and bearing (rad/s, CCW > 0).
         Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       memory: "periodic", "thesis" or a number of revolutions (see :mod:`vjax.operator`).
-      cavitation: "reynolds" (default), "half_sommerfeld" or "sommerfeld".
+      cavitation: "reynolds" (default), "jfo" (mass-conserving), "half_sommerfeld" or
+        "sommerfeld".
       supply_angle: groove position (rad, default pi), from the line of centres or, with
         ``groove="fixed"``, from the load direction (pi: opposite the load).
       supply_pressure: groove gauge pressure (Pa, default 0).
@@ -457,7 +529,9 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     if initial is not None:
         if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
-        x0 = jnp.concatenate([initial.pressure / p_ref, jnp.stack([initial.eccentricity, initial.attitude_angle])])
+        # film fraction - 1 in a "jfo" cavity (0 elsewhere): the universal unknown
+        x0 = jnp.concatenate([initial.pressure / p_ref + initial.film_fraction - 1.0,
+                              jnp.stack([initial.eccentricity, initial.attitude_angle])])
     elif options.strategy == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
         # cold start are spent far from the solution, where a coarse grid is as good and

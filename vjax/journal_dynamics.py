@@ -26,7 +26,8 @@ the surfaces' entrainment speed drops by R dgamma/dt (the classical omega - 2 ga
 perturbation of the Reynolds equation (finite volumes, with the squeeze term R dh/dt and the
 Fischer-Burmeister complementarity linearized as is: a cavitated cell stays at p = 0, a
 pressurized one conserves mass; half-Sommerfeld's clipped region moves with the zero of
-the pressure) is then
+the pressure; a "jfo" cavity conserves mass with its film fraction f as the unknown and
+R d(h f)/dt as its squeeze term, so its boundaries move as the mass balance says) is then
 
     A(Omega) dp = -(b_e de + b_e' i Omega de + b_v i Omega dgamma + (G_U + i Omega G_U') dU_rot)
 
@@ -133,10 +134,11 @@ class JournalCoefficients:
         return path
 
 
-def _perturbed_equations(pz, U, Udot, motion, x0, pr: _Params, cfg: _Config):
+def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: _Params, cfg: _Config):
     """Scaled cell equations (with the groove datum) and the film force on the journal (grid
-    axes) for pressure ``pz`` (/p_ref), body displacement ``U`` (m, u_B + u_J) and its rate
-    ``Udot`` (m/s), and a journal motion ``motion`` = (dX, dY, dX/dt, dY/dt) (m, m/s) in the
+    axes) for pressure ``pz`` (/p_ref; the universal unknown for "jfo") and its rate
+    ``pzdot`` (1/s; a "jfo" cavity's film fraction changes at that rate), body displacement
+    ``U`` (m, u_B + u_J) and its rate ``Udot`` (m/s), and a journal motion ``motion`` = (dX, dY, dX/dt, dY/dt) (m, m/s) in the
     grid's axes. Grid on the line of centres (a groove turning with it): the frame turns with
     the line of centres, dX changes the eccentricity, dY only turns the frame (no film
     change) and its rate lowers the entrainment speed by R dgamma/dt = R (dY/dt) / e. Grid on
@@ -144,7 +146,8 @@ def _perturbed_equations(pz, U, Udot, motion, x0, pr: _Params, cfg: _Config):
     n = pz.shape[0]
     theta, alpha = grid(n)
     cos, sin = jnp.cos(theta), jnp.sin(theta)
-    p = pz * pr.p_ref
+    pz_p, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation)
+    p = pz_p * pr.p_ref
     h = pr.c * (1 - x0[n] * jnp.cos(theta - _offset(x0, cfg))) + U
     if cfg.fixed_groove:
         h = h - motion[0] * cos - motion[1] * sin
@@ -154,8 +157,12 @@ def _perturbed_equations(pz, U, Udot, motion, x0, pr: _Params, cfg: _Config):
         h = h - motion[0] * cos
         hdot = -motion[2] * cos + Udot
         v = pr.v - pr.R * motion[3] / (x0[n] * pr.c)
-    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v)
-    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=pr.R * hdot)
+    jfo = cfg.cavitation == "jfo"
+    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v, fraction if jfo else None)
+    # the film's own growth R d(h f)/dt, f the liquid fraction (1 but in a "jfo" cavity)
+    fraction_rate = jnp.where(pz < 0, pzdot, 0.0) if jfo else 0.0
+    squeeze = pr.R * (hdot * fraction + h * fraction_rate)
+    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze)
     r = r.at[cfg.groove].set(pz[cfg.groove] - pr.ps / pr.p_ref)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
     F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * cos), jnp.sum(p_load * sin)])
@@ -184,12 +191,12 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
         if op is not None:
             U0 = U0 + op(reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation))
 
-    def eqs(pz, U, Udot, motion):
-        return _perturbed_equations(pz, U, Udot, motion, x0, pr, cfg)
+    def eqs(pz, pzdot, U, Udot, motion):
+        return _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr, cfg)
 
-    args = (pz0, U0, zero, jnp.zeros(4, x0.dtype))
+    args = (pz0, zero, U0, zero, jnp.zeros(4, x0.dtype))
     F0 = eqs(*args)[1]
-    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(*args)
+    J_p, J_pd, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3, 4))(*args)
     # d p_load = w dp (w: the pressurized fraction of each cell under half-Sommerfeld) and the
     # film force it makes, per unit change of pz
     p_load0 = reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation)
@@ -207,7 +214,7 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
                 M = M + _circulant(sym)
                 rot = rot + jnp.fft.ifft((sym0 - sym) * jnp.fft.fft(dp_load0))
         GU = J_U + 1j * W * J_Ud
-        A = J_p + GU @ (M * (load_slope * pr.p_ref)[None, :])
+        A = J_p + 1j * W * J_pd + GU @ (M * (load_slope * pr.p_ref)[None, :])
         # right-hand sides per unit journal motion dX, dY (grid axes)
         b_X = J_s[:, 0] + 1j * W * J_s[:, 2]
         b_Y = J_s[:, 1] + 1j * W * J_s[:, 3]
@@ -255,7 +262,9 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     pr, cfg, hb, sb = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
                              load_angle, "periodic", cavitation, supply_angle, supply_pressure, temperature, shift,
                              options, groove)
-    x0 = jnp.concatenate([sol.pressure / pr.p_ref, jnp.stack([sol.eccentricity, sol.attitude_angle])])
+    # the universal unknown of "jfo" (film fraction - 1 in its cavity; the pressure elsewhere)
+    x0 = jnp.concatenate([sol.pressure / pr.p_ref + sol.film_fraction - 1.0,
+                          jnp.stack([sol.eccentricity, sol.attitude_angle])])
     if cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
         pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
         x0, stats = _solve.implicit_root(lambda prm: _newton(prm.x0, prm, cfg),

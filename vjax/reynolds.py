@@ -11,18 +11,28 @@ A cell's net outflow w = q_out - q_in is its mass balance. Cavitation (``cavitat
   pressurized one conserves it), written as the Fischer-Burmeister equation
   p + w - sqrt(p^2 + w^2) = 0: semismooth, so Newton with an AD Jacobian works and the
   solution is differentiable where the cavitated set does not change.
+- ``"jfo"``: Jakobsson-Floberg-Olsson / Elrod-Adams conditions, which conserve mass. Each
+  cell holds a pressure p >= 0 and a liquid film fraction 0 <= f <= 1 with p (1 - f) = 0;
+  in a cavity the film is striated and carries the Couette flow of its liquid part only,
+  v h f. Both are one universal unknown u (Elrod's switch, as a semismooth function):
+  p = p_ref max(u, 0), f = 1 + min(u, 0), so the complementarity holds by construction and
+  every cell, pressurized or cavitated, conserves mass (w = 0). The Couette flux through a
+  face takes the fraction of the upwind cell (f jumps at a rupture or a re-formation).
+  Rupture and re-formation boundaries follow from the mass balance, not from a rule.
 - ``"half_sommerfeld"``: the full-Sommerfeld pressure with negative values set to zero
   when it loads the surfaces.
 - ``"sommerfeld"``: full Sommerfeld (w = 0 everywhere), negative pressures kept.
 
 The Reynolds model lets the cavity carry a full-film Couette flow, i.e. it does not conserve
-mass across the cavity.
+mass across the cavity; where the film re-forms only from the groove (a groove at the
+widest gap), JFO and Reynolds give the same pressure, elsewhere (a groove fixed in the
+bearing away from the widest gap, starved films) they differ.
 """
 from __future__ import annotations
 
 import jax.numpy as jnp
 
-CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+CAVITATION = ("reynolds", "jfo", "half_sommerfeld", "sommerfeld")
 
 
 def fischer_burmeister(a, b):
@@ -34,8 +44,9 @@ def fischer_burmeister(a, b):
 
 
 def load_pressure(p, cavitation):
-    """The pressure that loads the surfaces (Pa): negative values clipped for half-Sommerfeld."""
-    return jnp.maximum(p, 0.0) if cavitation == "half_sommerfeld" else p
+    """The pressure that loads the surfaces (Pa): negative values clipped for half-Sommerfeld
+    (and for ``"jfo"``, whose negative unknowns are film fractions - 1, not pressures)."""
+    return jnp.maximum(p, 0.0) if cavitation in ("half_sommerfeld", "jfo") else p
 
 
 def load_slope(p, cavitation):
@@ -44,6 +55,8 @@ def load_slope(p, cavitation):
     pressure is positive (0 or 1 away from the zeros of p): a perturbation that does not
     vanish where p does (a squeeze film) then loads a clipped film to second order in the
     cell size, as the closed-form pi film does, not to first order as a 0/1 mask would."""
+    if cavitation == "jfo":
+        return (p > 0).astype(p.dtype)
     if cavitation != "half_sommerfeld":
         return jnp.ones_like(p)
 
@@ -55,13 +68,34 @@ def load_slope(p, cavitation):
     return 0.5 * (positive_fraction(left, p) + positive_fraction(p, right))
 
 
-def face_fluxes(p, h, R, eta, v):
+def pressure_and_fraction(u, cavitation, smoothing=0.0):
+    """(p / p_ref, film fraction) of the scaled unknowns u: the universal variable of
+    ``"jfo"`` (p = max(u, 0), f = 1 + min(u, 0) = 1 + u - p), else (u, 1). ``smoothing``
+    mu > 0 rounds the switch, p = (u + sqrt(u^2 + mu^2))/2 (then p (1 - f) = mu^2/4): a
+    homotopy for the solver, not a physical model."""
+    if cavitation != "jfo":
+        return u, jnp.ones_like(u)
+    if isinstance(smoothing, (int, float)) and smoothing == 0:
+        p = jnp.maximum(u, 0.0)
+    else:
+        p = 0.5 * (u + jnp.sqrt(u * u + smoothing**2))
+    return p, 1.0 + u - p
+
+
+def face_fraction(fraction, v):
+    """Film fraction carried through the face between cell i and i + 1: the upwind cell's."""
+    return jnp.where(v >= 0, fraction, jnp.roll(fraction, -1))
+
+
+def face_fluxes(p, h, R, eta, v, fraction=None):
     """Face film h_f (m), pressure gradient dp/ds (Pa/m) and flux q (m^2/s) at the face
-    between cell i and i + 1."""
+    between cell i and i + 1; with a film ``fraction`` (``"jfo"``) the Couette part carries
+    the upwind cell's liquid only."""
     dth = 2 * jnp.pi / p.shape[0]
     hf = 0.5 * (h + jnp.roll(h, -1))
     dpds = (jnp.roll(p, -1) - p) / (R * dth)
-    return hf, dpds, -hf**3 * dpds / (12 * eta) + v * hf
+    couette = v * hf if fraction is None else v * hf * face_fraction(fraction, v)
+    return hf, dpds, -hf**3 * dpds / (12 * eta) + couette
 
 
 def cell_equations(p_scaled, q, q_ref, cavitation, squeeze=0.0):
@@ -91,7 +125,7 @@ def rupture_angle(p, theta, v, cavitation):
     else:
         # the last two pressurized nodes, extrapolated: p ~ (theta_r - theta)^2 before a
         # Reynolds rupture (sqrt(p) linear), p linear at a half-Sommerfeld zero
-        f = jnp.sqrt if cavitation == "reynolds" else (lambda y: y)
+        f = jnp.sqrt if cavitation in ("reynolds", "jfo") else (lambda y: y)
         sa, sb = f(jnp.maximum(a, 0.0)), f(jnp.maximum(b, 0.0))
         den = sa - sb
         frac = jnp.where(den > 0, sb / jnp.where(den > 0, den, 1.0), 0.0)
