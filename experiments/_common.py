@@ -92,6 +92,17 @@ def setup(out_dir="experiments/out") -> Path:
     return out
 
 
+def device_note() -> str:
+    """Where a benchmark ran: JAX version, backend and device kind, device count, CPUs."""
+    import os
+    import platform
+
+    import jax
+    devices = jax.devices()
+    return (f"jax {jax.__version__} on {devices[0].platform} ({devices[0].device_kind}) x {len(devices)} "
+            f"device(s), {os.cpu_count()} CPUs, {platform.machine()}")
+
+
 def atomic_write_text(path, text: str) -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically (:func:`fitting.files.write_atomic`),
     creating its folder."""

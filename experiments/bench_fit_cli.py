@@ -53,6 +53,7 @@ def main(out_dir="experiments/out", quick=False):
     """Run the measurements; returns the rows written."""
     from fitting import dma
     os.makedirs(out_dir, exist_ok=True)
+    print(f"device: {_common.device_note()}", flush=True)
     repeats = 1 if quick else 3
     data = dma.default_data("pyvisco")
     rows = []

@@ -70,6 +70,7 @@ def _refined(coarse, m):
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
+    print(f"device: {_common.device_note()}", flush=True)
     ns = (64, 128) if quick else (256, 512, 1024)
     speeds = list(-np.geomspace(0.4, 10.0, 20))
     repeats = 2 if quick else 3

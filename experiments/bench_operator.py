@@ -147,6 +147,7 @@ def plot(header, rows, path, dpi, note):
 def main(out_dir="experiments/out", quick=False):
     """Run the benchmark, print the table, write CSV/PNG/TXT into ``out_dir``; return the rows."""
     out = _common.setup(out_dir)
+    print(f"device: {_common.device_note()}", flush=True)
     if quick:
         exponents, repeats, dense_max, dpi = (8, 10), 9, 2 ** 10, 70
     else:

@@ -231,6 +231,7 @@ def tamaas_hertz(n, repeats):
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
+    print(f"device: {_common.device_note()}", flush=True)
     ns = [2**k for k in ((8, 9) if quick else range(8, 17))]
     dense_max = 2**8 if quick else 2**12
     m, omega = material(), OMEGA_TILDE / TAU

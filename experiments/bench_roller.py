@@ -93,6 +93,7 @@ def _time(fn, arg, repeats):
 
 def main(out_dir="experiments/out", quick=False, vmap=True, timings=True):
     out = _common.setup(out_dir)
+    print(f"device: {_common.device_note()}", flush=True)
     n = 1024 if quick else 4096
     nw = 20 if quick else 60
     ws = jnp.asarray(shaft(np.logspace(-4, 4, nw)))

@@ -89,6 +89,7 @@ def _run(devices: int, points_per_axis: int, n: int, chunk: int, partition: str)
 
 def main(out_dir="experiments/out", quick: bool = False) -> dict:
     out = _common.setup(out_dir)
+    print(f"device: {_common.device_note()}", flush=True)
     k, n, chunk, repeats = (4, 64, 16, 1) if quick else (10, 256, 100, 2)
     configs = [(1, "shard_map"), (2, "shard_map"), (2, "auto")]
     runs = []
