@@ -157,8 +157,8 @@ class JournalResult(_scene.SceneResult):
 
     ``force``: pressure force of the film on the housing (N/m, absolute x, y; the load at
     equilibrium). ``film_fraction``: liquid fraction of the film (1 in a full film, below 1
-    in a "jfo" cavity; 1 everywhere for the other conditions). ``torque``: by the fluid on the housing about O; ``torque_shaft``: on the
-    journal about O'; ``torque_shaft_about_O``; ``torque_viscoelastic``,
+    in a "jfo" cavity; 1 everywhere for the other conditions). ``torque``: by the fluid on
+    the housing about O; ``torque_shaft``: on the journal about O'; ``torque_shaft_about_O``; ``torque_viscoelastic``,
     ``torque_viscoelastic_shaft``: the pressure-on-deformed-profile parts (N m/m, CCW
     positive; see the module docstring). ``friction_radius``: |torque|/|force| (m).
     ``eccentricity`` eps = e/c of the journal centre; ``eccentricity_effective`` first Fourier

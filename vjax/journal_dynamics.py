@@ -138,11 +138,12 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: _Params, cfg: _Conf
     """Scaled cell equations (with the groove datum) and the film force on the journal (grid
     axes) for pressure ``pz`` (/p_ref; the universal unknown for "jfo") and its rate
     ``pzdot`` (1/s; a "jfo" cavity's film fraction changes at that rate), body displacement
-    ``U`` (m, u_B + u_J) and its rate ``Udot`` (m/s), and a journal motion ``motion`` = (dX, dY, dX/dt, dY/dt) (m, m/s) in the
-    grid's axes. Grid on the line of centres (a groove turning with it): the frame turns with
-    the line of centres, dX changes the eccentricity, dY only turns the frame (no film
-    change) and its rate lowers the entrainment speed by R dgamma/dt = R (dY/dt) / e. Grid on
-    the load line (a fixed groove): the frame is fixed and the motion changes the film."""
+    ``U`` (m, u_B + u_J) and its rate ``Udot`` (m/s), and a journal motion ``motion`` =
+    (dX, dY, dX/dt, dY/dt) (m, m/s) in the grid's axes. Grid on the line of centres (a
+    groove turning with it): the frame turns with the line of centres, dX changes the
+    eccentricity, dY only turns the frame (no film change) and its rate lowers the
+    entrainment speed by R dgamma/dt = R (dY/dt) / e. Grid on the load line (a fixed
+    groove): the frame is fixed and the motion changes the film."""
     n = pz.shape[0]
     theta, alpha = grid(n)
     cos, sin = jnp.cos(theta), jnp.sin(theta)
