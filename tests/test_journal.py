@@ -229,6 +229,35 @@ def test_failure_is_reported_not_nan_and_auto_recovers():
     assert float(auto.eccentricity) == pytest.approx(float(ref.eccentricity), abs=1e-8)
 
 
+ISSUE_BORE = dict(R=0.05, radial_clearance=5e-5, viscosity=0.01, load=2e4)
+
+
+def _prony_bore(scale, nu):
+    """The Prony bore of the issue report: E0 = scale MPa, three terms up to 10 scale MPa."""
+    return vjax.Material.prony(1e6 * scale, [3e6 * scale] * 3, [1e-3, 1e-2, 1e-1], nu)
+
+
+@pytest.mark.parametrize("omega", [100.0, 1000.0])
+def test_nearly_rigid_bore_converges_directly(omega):
+    """A bore whose mode-1 (rigid) displacement is ~0.3 clearances but whose film barely
+    deforms: Newton from the start that moves the journal with the bore converges without
+    continuation (it took 259 and 548 steps over 11 and 21 continuation stages when the
+    translation had to be found by Newton), at the same eccentricity as a plain continuation."""
+    kw = dict(ISSUE_BORE, housing=_prony_bore(1000, 0.4), omega_shaft=omega)
+    sol = journal_bearing(**kw, options=JournalOptions(n=256))
+    assert int(sol.stages) == 0 and int(sol.iterations) <= 40
+    assert float(sol.eccentricity) > 5 * float(sol.eccentricity_effective)      # mostly translation
+    cont = journal_bearing(**kw, options=JournalOptions(n=256, strategy="continuation"))
+    assert float(sol.eccentricity) == pytest.approx(float(cont.eccentricity), abs=1e-8)
+
+
+def test_soft_bore_failure_says_why():
+    """The issue's soft bore (1 MPa) deforms the film's shape by ~200 clearances: the failure
+    names that, not only the Newton statistics."""
+    with pytest.raises(vjax.ConvergenceError, match="clearances under this load"):
+        journal_bearing(**ISSUE_BORE, housing=_prony_bore(1, 0.5), omega_shaft=100.0, options=JournalOptions(n=64))
+
+
 def test_jit_vmap_and_warm_start():
     etas = jnp.array([0.01, 0.02, 0.04])
     f = jax.vmap(lambda eta: journal_bearing(R, C, eta, 4e5, omega_shaft=WJ, options=OPT64, throw=False).eccentricity)

@@ -546,8 +546,22 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     else:
         x0 = _guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
-    _solve.report("journal_bearing", sol, throw)
+    _solve.report("journal_bearing" + _deformation_hint(pr), sol, throw)
     return sol
+
+
+def _deformation_hint(pr: _Params) -> str:
+    """A note for the failure message when the bodies' deformation under the load dwarfs the
+    clearance: mode 2 (the first that changes the film's shape) of the mean pressure W/(2R)."""
+    ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
+    if not ops or not _checks.is_concrete((pr.c, pr.p_ref, *[op.symbol for op in ops])):
+        return ""
+    ratio = float(sum(abs(complex(op.symbol[2])) for op in ops) * pr.p_ref / pr.c)
+    if ratio < 30:      # continuation has been seen to converge up to ~20
+        return ""
+    return (f" (the bodies' compliance deforms the film's shape by ~{ratio:.0f} clearances under this load: a "
+            f"soft conformal contact, beyond this Newton solver's reach and, past strains of a few percent, beyond "
+            f"linear viscoelasticity; stiffer bodies, a larger clearance or a smaller load)")
 
 
 def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
