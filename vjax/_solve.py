@@ -80,8 +80,9 @@ def report(what: str, stats: Stats, throw: bool) -> None:
         jax.debug.callback(lambda *a: _raise(what, *a), *args)
 
 
-def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30):
-    """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian.
+def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None):
+    """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian,
+    or with ``linear_solve(x, state, r) -> dx`` solving J dx = -r (a matrix-free Krylov solve).
 
     ``state`` is carried from one accepted point to the next and not differentiated (e.g. the
     pressures that warm-start a nested contact solve); ``valid`` marks points the equations
@@ -107,8 +108,11 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30):
 
     def body(c):
         k, x, r, state, _ = c
-        J, (r, state, _) = jacobian(x, state)
-        dx = jnp.linalg.solve(J, -r)
+        if linear_solve is None:
+            J, (r, state, _) = jacobian(x, state)
+            dx = jnp.linalg.solve(J, -r)
+        else:
+            dx = linear_solve(x, state, r)
         if max_step is not None:
             ratio = jnp.max(jnp.abs(dx) / max_step)
             dx = dx / jnp.maximum(1.0, ratio)

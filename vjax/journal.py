@@ -109,7 +109,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _scene, _solve, reference, reynolds
+from . import _banded, _checks, _krylov, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
@@ -117,22 +117,30 @@ HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
 GROOVES = ("line_of_centres", "fixed")
 JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
-NESTED_MIN_N = 512  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
+NESTED_MIN_N = 512
+KRYLOV_MIN_N = 1024  # linear_solver="auto": dense LU up to this many elements, GMRES above
+KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
 
 
 @dataclasses.dataclass(frozen=True)
 class JournalOptions:
     """Static options of :func:`journal_bearing`: ``n`` elements (even, >= 16), Newton
-    tolerance ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in
-    float32), ``max_iter`` Newton steps per solve, at most ``stages`` continuation solves,
+    tolerance ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, raised to
+    the round-off floor 4 eps (n / 2 pi)^2 of the cell balances above n ~ 4000 (a second
+    difference of pressures over a cell width squared); 1e-4 in float32), ``max_iter`` Newton steps per solve, at most ``stages`` continuation solves,
     ``strategy`` "auto" (direct Newton, continuation if that fails), "newton" or
-    "continuation"."""
+    "continuation"; ``linear_solver`` of each Newton step: "dense" (LU of the AD Jacobian,
+    O(n^3)), "krylov" (matrix-free GMRES preconditioned by the film's tridiagonal Jacobian
+    plus the bodies' compliance on its lowest ``krylov_modes`` Fourier modes, O(n log n)
+    per product) or "auto" (Krylov above n = 1024)."""
 
     n: int = 256
     tol: float | None = None
     max_iter: int = 40
     stages: int = 40
     strategy: str = "auto"
+    linear_solver: str = "auto"
+    krylov_modes: int = 32
 
     def __post_init__(self):
         _checks.option_count("n", self.n, 16)
@@ -143,6 +151,12 @@ class JournalOptions:
         _checks.option_count("max_iter", self.max_iter)
         _checks.option_count("stages", self.stages)
         _checks.one_of("strategy", self.strategy, ("auto", "newton", "continuation"))
+        _checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
+        _checks.option_count("krylov_modes", self.krylov_modes, 2)
+
+    @property
+    def krylov(self) -> bool:
+        return self.linear_solver == "krylov" or (self.linear_solver == "auto" and self.n > KRYLOV_MIN_N)
 
 
 @jax.tree_util.register_dataclass
@@ -267,9 +281,10 @@ def _guess(pr: _Params, n, cfg: _Config):
     return jnp.concatenate([p, jnp.stack([eps, phi])])
 
 
-def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0):
+def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
     """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
-    "jfo" switch, see :func:`_solver`)."""
+    "jfo" switch, see :func:`_solver`; ``deformation``: u_B + u_J given instead of computed,
+    for the Newton preconditioner)."""
     n = x.shape[0] - 2
     theta, alpha = grid(n)
     pz, fraction = reynolds.pressure_and_fraction(x[:n], cfg.cavitation, smoothing)
@@ -284,16 +299,18 @@ def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0):
     zero = jnp.zeros_like(p)
     uB = zero if pr.op_B is None else deform(pr.op_B)
     uJ = zero if pr.op_J is None else deform(pr.op_J)
+    if deformation is not None:
+        uB, uJ = deformation, zero
     h = pr.c * (1 - x[n] * jnp.cos(theta - _offset(x, cfg))) + uB + uJ
     hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
     return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
                 fraction=fraction)
 
 
-def _equations(x, pr: _Params, cfg: _Config, smoothing=0.0):
+def _equations(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
     """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
     n = x.shape[0] - 2
-    f = _fields(x, pr, cfg, smoothing)
+    f = _fields(x, pr, cfg, smoothing, deformation)
     r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
     r = r.at[cfg.groove].set(x[cfg.groove] - pr.ps / pr.p_ref)
     Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
@@ -322,10 +339,68 @@ def _newton(x0, pr, cfg, smoothing=0.0):
     n = x0.shape[0] - 2
     # a trust cap on the two geometric unknowns (eps, attitude)
     cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap)
+    linear_solve = None
+    if cfg.options.krylov:
+        def linear_solve(x, state, r):
+            solve, _, matvec, _ = _linear_model(x, pr, cfg, smoothing)
+            return _krylov.gmres(matvec, -r, solve, KRYLOV_TOL, 200)[0]
+    x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
+                                linear_solve=linear_solve)
     physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c, _offset(x, cfg)) > 0
     result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
     return x, _solve.Stats(stats.iterations, stats.residual, result)
+
+
+def _linear_model(x, pr: _Params, cfg: _Config, smoothing=0.0):
+    """The Newton system at x, matrix-free: ``(solve, solve_transpose, matvec, matvec_transpose)``,
+    the solves those of a preconditioner M ~ J, O(n k) per application.
+
+    J = A + G K D in the cell rows, plus the rows and columns of (eps, attitude): A and G the
+    derivatives of the cell equations with respect to the pressure (the film held) and to the
+    deformation (cyclic tridiagonal: a cell sees its neighbours' faces), K the bodies'
+    compliance (circulant), D the derivative of the loading pressure (diagonal). M keeps K on
+    its lowest ``krylov_modes`` Fourier modes, which carry most of a body's compliance
+    (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax._banded`).
+    For rigid bodies M = J exactly: GMRES converges in one step."""
+    n = x.shape[0] - 2
+    N, dtype = n + 2, x.dtype
+    f = _fields(x, pr, cfg, smoothing)
+    deformation = f["uB"] + f["uJ"]
+    cells = lambda u, U: _equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U)[0][:n]
+    lower, diag, upper = _banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
+    full = lambda y: _equations(y, pr, cfg, smoothing)[0]
+    _, matvec = jax.linearize(full, x)
+    _, vjp = jax.vjp(full, x)
+    unit = jnp.eye(N, dtype=dtype)
+    J_cols = jax.vmap(matvec)(unit[n:]).T                    # (N, 2): d/d(eps, attitude)
+    J_rows = jax.vmap(lambda c: vjp(c)[0])(unit[n:])[:, :n]    # (2, n): force rows d/dp
+    pad = lambda a: jnp.concatenate([a, jnp.zeros((2,) + a.shape[1:], dtype)])
+    # the ring's corners, and the border of the two geometric unknowns (diagonal 1 in T)
+    U = [pad(jnp.stack([lower[0] * unit[0, :n], upper[-1] * unit[n - 1, :n]], axis=1)),
+         J_cols - unit[:, n:], unit[:, n:]]
+    V = [pad(jnp.stack([unit[n - 1, :n], unit[0, :n]], axis=1)), unit[:, n:],
+         jnp.concatenate([J_rows.T, jnp.zeros((2, 2), dtype)])]
+    ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
+    if ops:
+        G = _banded.cyclic_diagonals(lambda U_: cells(x[:n], U_), deformation)
+        load = lambda u: reynolds.load_pressure(reynolds.pressure_and_fraction(u, cfg.cavitation, smoothing)[0]
+                                                * pr.p_ref, cfg.cavitation)
+        D = jax.jvp(load, (x[:n],), (jnp.ones(n, dtype),))[1]
+        m = min(cfg.options.krylov_modes, n // 2 - 1)
+        theta, _ = grid(n)
+        k = jnp.arange(2, m + 1)                                  # mode 1 comes from the load
+        basis = jnp.concatenate([jnp.ones((n, 1), dtype), jnp.cos(theta[:, None] * k), jnp.sin(theta[:, None] * k)],
+                                axis=1)
+        weight = jnp.concatenate([jnp.full(1, 1.0 / n), jnp.full(2 * (m - 1), 2.0 / n)]).astype(dtype)
+        symbol = sum(op.symbol for op in ops).at[1].set(0.0)
+        K_basis = jnp.fft.irfft(symbol[:, None] * jnp.fft.rfft(basis, axis=0), n, axis=0)
+        U.append(pad(_banded.cyclic_matvec(G, K_basis * weight)))
+        V.append(pad(D[:, None] * basis))
+    zeros2 = jnp.zeros(2, dtype)
+    tri = (jnp.concatenate([lower, zeros2]), jnp.concatenate([diag, jnp.ones(2, dtype)]),
+           jnp.concatenate([upper.at[-1].set(0.0), zeros2]))
+    solve, solve_transpose = _banded.woodbury(tri, jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1))
+    return solve, solve_transpose, matvec, lambda v: vjp(v)[0]
 
 
 def _staged(pr: _Params, t):
@@ -478,7 +553,13 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
 @partial(jax.jit, static_argnums=(1,))
 def _run(pr: _Params, cfg: _Config):
     residual = lambda x, aux, prm: _equations(x, prm, cfg)[0]
-    x, (stats, stages) = _solve.implicit_root(lambda prm: _solver(prm, cfg), residual)(pr)
+    linear_solver = None
+    if cfg.options.krylov:
+        def linear_solver(x, aux, prm):
+            solve, solve_t, matvec, matvec_t = _linear_model(x, prm, cfg)
+            return (lambda b: _krylov.gmres(matvec, b, solve, KRYLOV_TOL, 200)[0],
+                    lambda b: _krylov.gmres(matvec_t, b, solve_t, KRYLOV_TOL, 200)[0])
+    x, (stats, stages) = _solve.implicit_root(lambda prm: _solver(prm, cfg), residual, linear_solver)(pr)
     return _outputs(x, pr, cfg, stats, stages)
 
 
@@ -608,7 +689,8 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
     n = options.n
     dtype = jnp.result_type(float)
-    tol = options.tol if options.tol is not None else (1e-10 if dtype == jnp.float64 else 1e-4)
+    floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
+    tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
     cfg = _Config(cavitation, int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n, options, float(tol),
                   groove == "fixed")
 
