@@ -15,6 +15,12 @@ omega~_B = 0.2, omega~_J = -0.4. For each n:
 - errors of eps, attitude angle, bearing torque and minimum film against the same problem
   on a 4x finer grid (started from the coarse solution, interpolated).
 
+Scaling (``bench_journal_scaling.csv``, ``bench_journal_scaling.png``): warm time per solve
+(median, compile apart) and Newton steps for n = 256 ... 8192 with each Newton linear solve,
+dense LU (n <= 2048) and matrix-free GMRES (``linear_solver="krylov"``), for the HS case and
+a rigid bearing (R = 50 mm, c = 50 um, eta = 0.01 Pa s, 1e5 N/m, 100 rad/s), and the ratio of
+GMRES at n = 4096 to dense LU at n = 512.
+
 Target of the issue: one point at n = 512 under 1 s warm on the 2-core CPU. The machine's
 load average is written next to the timings (other jobs share the two cores).
 """
@@ -27,7 +33,6 @@ import os
 # threaded). Only effective before numpy/scipy/jax are imported.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import dataclasses
 import sys
 import time
 
@@ -59,13 +64,53 @@ def _sweep(n, speeds):
     return out
 
 
-def _refined(coarse, m):
-    """A start for the m-element grid: the coarse pressure interpolated periodically."""
-    n = coarse.pressure.shape[-1]
-    th_c = np.arange(n) * 2 * np.pi / n
-    th_f = np.arange(m) * 2 * np.pi / m
-    p = np.interp(th_f, th_c, np.asarray(coarse.pressure), period=2 * np.pi)
-    return dataclasses.replace(coarse, pressure=jax.numpy.asarray(p))
+def _rigid(n, solver):
+    return vjax.journal_bearing(0.05, 5e-5, 0.01, 1e5, omega_shaft=100.0,
+                                options=vjax.JournalOptions(n=n, linear_solver=solver))
+
+
+def scaling(out, quick):
+    """Time per solve against n for the dense and the matrix-free Newton step."""
+    import matplotlib.pyplot as plt
+    ns = (128, 256) if quick else (256, 512, 1024, 2048, 4096, 8192)
+    dense_max = 256 if quick else 2048
+    repeats = 2 if quick else 3
+    rows, times = [], {}
+    for case, fn in (("HS thesis", lambda n, s: _point_with(n, s)), ("rigid", _rigid)):
+        for solver in ("dense", "krylov"):
+            for n in ns:
+                if solver == "dense" and n > dense_max:
+                    continue
+                first, warm = _common.time_fn(lambda: fn(n, solver), repeats=repeats)
+                sol = fn(n, solver)
+                times[case, solver, n] = warm
+                rows.append([case, solver, n, first, warm, int(sol.iterations), float(sol.eccentricity)])
+                print(f"scaling {case} {solver} n={n}: first {first:.2f} s, warm {warm:.4f} s, "
+                      f"{int(sol.iterations)} Newton steps", flush=True)
+    header = ["case", "linear_solver", "n", "first_call_s", "warm_s", "newton_steps", "eps"]
+    big, small = (ns[-1], ns[0]) if quick else (4096, 512)
+    ratios = {case: times[case, "krylov", big] / times[case, "dense", small] for case in ("HS thesis", "rigid")}
+    comments = [f"warm: median of {repeats} calls; first: compile + one call (nested coarse levels included)",
+                *(f"{case}: krylov n={big} / dense n={small} = {r:.2f}" for case, r in ratios.items())]
+    _common.write_csv(out / "bench_journal_scaling.csv", header, rows, comments=comments)
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
+    for (case, style) in (("HS thesis", "-"), ("rigid", "--")):
+        for solver, color in (("dense", "C0"), ("krylov", "C1")):
+            pts = sorted((n, t) for (c, s_, n), t in times.items() if c == case and s_ == solver)
+            ax.loglog(*zip(*pts), style, marker="o", color=color, label=f"{case}, {solver}")
+    ax.set_xlabel("elements n")
+    ax.set_ylabel("warm time per solve (s)")
+    ax.set_title("journal_bearing: dense LU vs matrix-free GMRES Newton steps", fontsize=10)
+    ax.legend(fontsize=8)
+    _common.save_figure(fig, out / "bench_journal_scaling.png")
+    text = _common.print_table(header, rows, title="journal_bearing scaling") + "\n" + "\n".join(comments[1:])
+    print(text)
+    return text
+
+
+def _point_with(n, solver):
+    return vjax.journal_bearing(RB, C, ETA, LOAD, housing=SLS, omega_shaft=WJ, omega_housing=WB,
+                                options=vjax.JournalOptions(n=n, linear_solver=solver))
 
 
 def main(out_dir="experiments/out", quick=False):
@@ -84,7 +129,7 @@ def main(out_dir="experiments/out", quick=False):
         jax.block_until_ready(sweep[-1])
         sweep_s = time.perf_counter() - t0
         m = 4 * n
-        ref = _point(m, initial=_refined(sol, m))
+        ref = _point(m)            # a cold start on 4n: nested from n, C1-interpolated
         errs = dict(
             eps=abs(float(sol.eccentricity - ref.eccentricity)),
             attitude=abs(float(sol.attitude_angle - ref.attitude_angle)),
@@ -103,6 +148,7 @@ def main(out_dir="experiments/out", quick=False):
                                 f"{len(speeds)}-speed sweep omega~_J = -0.4 ... -10 with warm starts",
                                 f"cpu count {os.cpu_count()}"])
     text = _common.print_table(header, rows, title="journal_bearing work-precision (HS thesis case)")
+    text += "\n" + scaling(out, quick)
     _common.atomic_write_text(out / "bench_journal.txt", text + "\n")
     return text
 

@@ -81,13 +81,17 @@ for a pattern moving at Omega relative to it):
 Solver
 ------
 Unknowns p/p_ref (n values), eps, attitude: n + 2 equations (cell balances / FB, groove
-datum, two force components). The core's damped Newton (:func:`vjax._solve.newton`) with the
-exact dense AD Jacobian (steps giving h <= 0 are rejected). The bodies' deformation takes
+datum, two force components). The core's damped Newton (:func:`vjax._solve.newton`; steps
+giving h <= 0 are rejected), each step solved (``options.linear_solver``) with the exact
+dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products, O(n log n))
+preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on its
+lowest Fourier modes (:func:`_linear_model`; exact for rigid bodies); "auto" switches to
+GMRES above n = 1024, and the implicit derivatives use the same solve. The bodies' deformation takes
 its Fourier mode 1 (a rigid translation) from the load, which the film force equals at the
 root, not from the iterate's pressure: the same root, without a translation of up to
 hundreds of clearances for Newton to find (docs/theory.md §10). ``options.strategy="auto"``
 first tries Newton from the rigid half-Sommerfeld estimate (for n >= 512 from the solution on
-a 4x coarser grid, interpolated; or from ``initial``, e.g. the previous point of a sweep); if
+a 4x coarser grid, interpolated by C1 cubics; or from ``initial``, e.g. the previous point of a sweep); if
 it fails or lands on the spurious branch (effective eccentricity <= 0: the supply at the
 minimum gap), it continues from a rigid solution at a higher entrainment speed (such that
 the rigid eccentricity is about 0.6), ramping the compliance in and the speed down over at
@@ -608,7 +612,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
                                      shift, options, groove)
     n, p_ref, dtype = options.n, pr.p_ref, pr.x0.dtype
     if initial is not None:
-        if not isinstance(initial, JournalResult) or initial.pressure.shape != (n,):
+        if not isinstance(initial, JournalResult) or any(a.shape != (n,) for a in (initial.pressure,
+                                                                                   initial.film_fraction)):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
         # film fraction - 1 in a "jfo" cavity (0 elsewhere): the universal unknown
         x0 = jnp.concatenate([initial.pressure / p_ref + initial.film_fraction - 1.0,
