@@ -98,6 +98,8 @@ def scaling(out, quick):
         for solver, color in (("dense", "C0"), ("krylov", "C1")):
             pts = sorted((n, t) for (c, s_, n), t in times.items() if c == case and s_ == solver)
             ax.loglog(*zip(*pts), style, marker="o", color=color, label=f"{case}, {solver}")
+    ax.set_xticks(ns, [str(n) for n in ns])
+    ax.xaxis.set_minor_formatter(plt.NullFormatter())
     ax.set_xlabel("elements n")
     ax.set_ylabel("warm time per solve (s)")
     ax.set_title("journal_bearing: dense LU vs matrix-free GMRES Newton steps", fontsize=10)
