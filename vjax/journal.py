@@ -83,19 +83,20 @@ Solver
 Unknowns p/p_ref (n values), eps, attitude: n + 2 equations (cell balances / FB, groove
 datum, two force components). The core's damped Newton (:func:`vjax._solve.newton`; steps
 giving h <= 0 are rejected), each step solved (``options.linear_solver``) with the exact
-dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products, O(n log n))
-preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on its
-lowest Fourier modes (:func:`_linear_model`; exact for rigid bodies); "auto" switches to
-GMRES above n = 1024, and the implicit derivatives use the same solve. The bodies' deformation takes
-its Fourier mode 1 (a rigid translation) from the load, which the film force equals at the
-root, not from the iterate's pressure: the same root, without a translation of up to
-hundreds of clearances for Newton to find (docs/theory.md §10). ``options.strategy="auto"``
-first tries Newton from the rigid half-Sommerfeld estimate (for n >= 512 from the solution on
-a 4x coarser grid, interpolated by C1 cubics; or from ``initial``, e.g. the previous point of a sweep); if
-it fails or lands on the spurious branch (effective eccentricity <= 0: the supply at the
-minimum gap), it continues from a rigid solution at a higher entrainment speed (such that
-the rigid eccentricity is about 0.6), ramping the compliance in and the speed down over at
-most ``options.stages`` Newton solves. Derivatives of the converged solution are implicit
+dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products,
+O(n log n)) preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on
+its lowest Fourier modes (:func:`_linear_model`; exact for rigid bodies); "auto" switches to
+GMRES above n = 1024, and the implicit derivatives use the same solve. The bodies'
+deformation takes its Fourier mode 1 (a rigid translation) from the load, which the film
+force equals at the root, not from the iterate's pressure: the same root, without a
+translation of up to hundreds of clearances for Newton to find (docs/theory.md §10).
+``options.strategy="auto"`` first tries Newton from the rigid half-Sommerfeld estimate (for
+n >= 512 from the solution on a 4x coarser grid, interpolated by C1 cubics; or from
+``initial``, e.g. the previous point of a sweep); if it fails or lands on the spurious
+branch (effective eccentricity <= 0: the supply at the minimum gap), it continues from a
+rigid solution at a higher entrainment speed (such that the rigid eccentricity is about
+0.6), ramping the compliance in and the speed down over at most ``options.stages`` Newton
+solves. Derivatives of the converged solution are implicit
 (:func:`vjax._solve.implicit_root`), not through the iterations.
 
 Convergence: ``iterations`` (Newton steps on the final grid, summed over continuation
@@ -121,9 +122,9 @@ HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
 GROOVES = ("line_of_centres", "fixed")
 JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
-NESTED_MIN_N = 512
+NESTED_MIN_N = 512   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
 KRYLOV_MIN_N = 1024  # linear_solver="auto": dense LU up to this many elements, GMRES above
-KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve  # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
+KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
 
 
 @dataclasses.dataclass(frozen=True)
@@ -131,7 +132,8 @@ class JournalOptions:
     """Static options of :func:`journal_bearing`: ``n`` elements (even, >= 16), Newton
     tolerance ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, raised to
     the round-off floor 4 eps (n / 2 pi)^2 of the cell balances above n ~ 4000 (a second
-    difference of pressures over a cell width squared); 1e-4 in float32), ``max_iter`` Newton steps per solve, at most ``stages`` continuation solves,
+    difference of pressures over a cell width squared); 1e-4 in float32), ``max_iter``
+    Newton steps per solve, at most ``stages`` continuation solves,
     ``strategy`` "auto" (direct Newton, continuation if that fails), "newton" or
     "continuation"; ``linear_solver`` of each Newton step: "dense" (LU of the AD Jacobian,
     O(n^3)), "krylov" (matrix-free GMRES preconditioned by the film's tridiagonal Jacobian
