@@ -39,10 +39,10 @@ from experiments import _common
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_map") -> dict:
-    """Runs inside the subprocess: one sweep, returns its numbers."""
-    _common.enable_x64()
-    import jax
+def pin_design(points_per_axis: int, n: int, points: int | None = None):
+    """The pin-joint design sweep: ``(params, point)`` for :func:`vjax.sweep` over
+    ``points_per_axis``^3 combinations of patch speed, load and clearance (the first
+    ``points`` of them if given), each a :func:`vjax.pin_in_hole` solve on n elements."""
     import numpy as np
     import vjax
 
@@ -53,7 +53,7 @@ def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_ma
     load = np.linspace(1500.0, 3500.0, k)              # N/m (F~ 0.019..0.044)
     clearance = np.linspace(3e-3, 7e-3, k)             # dR, m
     W, L, C = np.meshgrid(omega, load, clearance, indexing="ij")
-    params = {"omega": W.ravel(), "load": L.ravel(), "clearance": C.ravel()}
+    params = {"omega": W.ravel()[:points], "load": L.ravel()[:points], "clearance": C.ravel()[:points]}
 
     def point(p):
         c = p["clearance"]
@@ -62,6 +62,17 @@ def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_ma
         return {"torque": r.torque, "offset": r.pin_offset, "angle": r.contact_angle,
                 "converged": r.converged, "iterations": r.iterations}
 
+    return params, point
+
+
+def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_map") -> dict:
+    """Runs inside the subprocess: one sweep, returns its numbers."""
+    _common.enable_x64()
+    import jax
+    import numpy as np
+    import vjax
+
+    params, point = pin_design(points_per_axis, n)
     t0 = time.perf_counter()
     out, info = vjax.sweep(point, params, chunk_size=chunk, desc=f"{len(jax.devices())} dev {partition}",
                            return_info=True, partition=partition)

@@ -25,7 +25,7 @@ from .journal import JournalOptions, JournalResult, journal_bearing
 from .journal_dynamics import JournalCoefficients, journal_coefficients, stability_threshold
 from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from . import reference
-from .sweep import sweep
+from .sweep import initialize_processes, sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole", "liner", "sleeve",
@@ -33,7 +33,8 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "eff
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
            "JournalOptions", "JournalResult", "journal_bearing", "JournalCoefficients", "journal_coefficients",
            "stability_threshold",
-           "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep"]
+           "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
+           "initialize_processes"]
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(

@@ -29,12 +29,19 @@ How it works:
 
 Devices: the same code runs on one CPU, on several CPU devices
 (``XLA_FLAGS=--xla_force_host_platform_device_count=2``, set before JAX starts), on GPUs,
-and on several hosts. Multi-host (not tested here): call ``jax.distributed.initialize()``
-on every process first and run the same script everywhere with the same ``params``;
+and on several processes or hosts. Several processes: call :func:`initialize_processes` on
+every process first (it wraps ``jax.distributed.initialize`` and selects the gloo
+collectives on CPU) and run the same script everywhere with the same ``params``;
 ``jax.devices()`` then lists all processes' devices, each process builds its shards of a
-chunk with :func:`jax.make_array_from_callback` (it only touches its own devices) and the
-outputs are gathered to every process with
-``jax.experimental.multihost_utils.process_allgather``.
+chunk with :func:`jax.make_array_from_callback` (it only touches its own devices), evaluates
+them, and the outputs are gathered to every process with
+``jax.experimental.multihost_utils.process_allgather``: every process returns the whole
+result, and only process 0 draws the progress bar. ``experiments/distributed_sweep.py``
+launches such a run on one machine and checks it against one process (tested).
+
+If a process dies, the others block in the next gather until the coordination service
+misses its heartbeats (``heartbeat_timeout`` s) and then stop with JAX's error naming the
+missing task: a sweep never returns a partial result.
 
 Points that a solver fails on are not special: pass ``throw=False`` to the scene inside
 ``fn`` and return its ``converged`` flag, then inspect it (a ``throw=True`` scene raises
@@ -57,7 +64,7 @@ import jax
 import numpy as np
 from jax.sharding import Mesh, NamedSharding, PartitionSpec
 
-__all__ = ["sweep", "SweepInfo", "batch_size"]
+__all__ = ["sweep", "SweepInfo", "batch_size", "initialize_processes"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,6 +89,22 @@ class SweepInfo:
     run_s: float
     points_per_s: float
     memory: dict | None
+
+
+def initialize_processes(coordinator_address: str | None = None, num_processes: int | None = None,
+                         process_id: int | None = None, heartbeat_timeout: int = 30) -> None:
+    """Join this process to a multi-process JAX run (call before any JAX computation).
+
+    ``coordinator_address`` "host:port" of process 0, ``num_processes`` and this
+    ``process_id`` (0-based); all None on a cluster JAX detects (SLURM, Open MPI, ...: it then
+    reads them from the scheduler's environment). On CPU the cross-process collectives are
+    gloo's (TCP). ``heartbeat_timeout``: seconds after which the others give up on a process
+    that died (JAX's default is 100).
+    """
+    # CPU devices' collectives only (GPUs use NCCL either way)
+    jax.config.update("jax_cpu_collectives_implementation", "gloo")
+    jax.distributed.initialize(coordinator_address=coordinator_address, num_processes=num_processes,
+                               process_id=process_id, heartbeat_timeout_seconds=int(heartbeat_timeout))
 
 
 def batch_size(params) -> int:
