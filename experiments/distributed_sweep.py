@@ -20,6 +20,9 @@ arguments; elsewhere pass ``coordinator_address="host0:port"``, ``num_processes`
 ``process_id`` (e.g. from ``$RANK``/``$WORLD_SIZE``). Every process gets the whole result; let
 process 0 (``jax.process_index() == 0``) write it.
 
+``VJAX_XLA_FLAGS`` is passed to every process as ``XLA_FLAGS`` (e.g.
+``--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1`` for one thread each).
+
 When a process dies: here the launcher stops the others at once and exits with a message
 naming the process and the tail of its error output; no result file is written. On a
 cluster the survivors stop with JAX's error after the heartbeat timeout (30 s by default in
@@ -81,7 +84,8 @@ def launch(processes: int, points: int, n: int, result_path: str | None, timeout
     joining (tests). Returns the workers' reports, by process id."""
     port = _free_port()
     env = dict(os.environ, JAX_PLATFORMS="cpu", PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    env.pop("XLA_FLAGS", None)                                   # one CPU device per process
+    # one CPU device per process; VJAX_XLA_FLAGS passes other flags (e.g. one thread each)
+    env["XLA_FLAGS"] = os.environ.get("VJAX_XLA_FLAGS", "")
     procs = []
     for i in range(processes):
         cmd = [sys.executable, "-m", "experiments.distributed_sweep", "--worker", str(i), "--processes",

@@ -239,6 +239,9 @@ def sweep(fn, params, *, chunk_size: int | None = None, devices=None, progress: 
     compiled = f.lower(first).compile()
     compile_s = time.perf_counter() - t0
     memory = _memory(compiled)
+    if jax.process_count() > 1:   # start together: run_s then excludes the others' compilation
+        from jax.experimental import multihost_utils
+        multihost_utils.sync_global_devices("vjax.sweep: compiled")
 
     outs = []
     t_run = time.perf_counter()
