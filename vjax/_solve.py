@@ -80,7 +80,8 @@ def report(what: str, stats: Stats, throw: bool) -> None:
         jax.debug.callback(lambda *a: _raise(what, *a), *args)
 
 
-def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None):
+def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None,
+           jacobian=None):
     """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian,
     or with ``linear_solve(x, state, r) -> dx`` solving J dx = -r (a matrix-free Krylov solve).
 
@@ -90,12 +91,22 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     (scaled down so that ``|dx_i| <= max_step_i``) and halves it until the trial point is valid
     and 0.5|r|^2 decreased by the Armijo factor ``1 - 1e-4 lam``. Converged when
     ``max|r| <= tol`` at a valid point. Returns ``(x, state, Stats)``.
+
+    ``jacobian``: reuse Jacobians, for equations whose Jacobian costs many evaluations of
+    ``fn`` (one tangent solve per column). Pass ``(J0, keep)``: an (m, m) Jacobian and whether
+    to use it, e.g. that of the previous point of a continuation and True, or zeros and False
+    to compute the first one. A Jacobian is kept while its steps shrink ``max|r|`` at least
+    fourfold with no line search (Broyden-updated after each step: cheap and, near the root,
+    superlinear) and recomputed at the current point otherwise; a step that fails with a kept Jacobian is retried with a
+    fresh one, not reported as stalled. Then returns ``(x, state, Stats, J)``, J the last
+    Jacobian used (to pass on to the next solve).
     """
     def fn_aux(x, state):
         out = fn(x, state)
         return out[0], out
 
-    jacobian = jax.jacfwd(fn_aux, has_aux=True)
+    exact_jacobian = jax.jacfwd(fn_aux, has_aux=True)
+    reuse = jacobian is not None
     half_sq = lambda r: 0.5 * jnp.sum(r * r)
     r0, s0, v0 = fn(x0, state0)
     ok0 = jnp.all(jnp.isfinite(r0)) & v0
@@ -103,13 +114,18 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     result0 = jnp.where(done0, SUCCESS, jnp.where(ok0, MAX_ITERATIONS, NONFINITE))
 
     def cond(c):
-        k, _, _, _, result = c
+        k, _, _, _, result = c[:5]
         return (result == MAX_ITERATIONS) & (k < max_iter)
 
     def body(c):
-        k, x, r, state, _ = c
-        if linear_solve is None:
-            J, (r, state, _) = jacobian(x, state)
+        k, x, r, state, _ = c[:5]
+        if reuse:
+            J, keep = c[5:]
+            # only the Jacobian: r and state at x are those of the accepted point already
+            J = jax.lax.cond(keep, lambda: J, lambda: exact_jacobian(x, state)[0])
+            dx = jnp.linalg.solve(J, -r)
+        elif linear_solve is None:
+            J, (r, state, _) = exact_jacobian(x, state)
             dx = jnp.linalg.solve(J, -r)
         else:
             dx = linear_solve(x, state, r)
@@ -136,16 +152,30 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
 
         lam, rt, st, ok, _ = jax.lax.while_loop(ls_cond, ls_body, (jnp.asarray(1.0, r.dtype), *trial(1.0), 0))
         ok = ok & finite
+        reduced = jnp.max(jnp.abs(rt)) <= 0.25 * jnp.max(jnp.abs(r))
         x = jnp.where(ok, x + lam * dx, x)
-        r = jnp.where(ok, rt, r)
+        r_new = jnp.where(ok, rt, r)
         state = jax.tree_util.tree_map(lambda a, b: jnp.where(ok, a, b), st, state)
-        result = jnp.where(~finite, NONFINITE, jnp.where(~ok, STALLED, jnp.where(
-            jnp.max(jnp.abs(r)) <= tol, SUCCESS, MAX_ITERATIONS)))
-        return k + 1, x, r, state, result
+        # a failed step with a kept Jacobian is retried with a fresh one
+        retry = ~ok & keep if reuse else False
+        result = jnp.where(~finite & ~retry, NONFINITE, jnp.where(~ok & ~retry, STALLED, jnp.where(
+            jnp.max(jnp.abs(r_new)) <= tol, SUCCESS, MAX_ITERATIONS)))
+        out = (k + 1, x, r_new, state, result)
+        if reuse:
+            # Broyden's rank-one update makes the kept J exact along the step just taken
+            s_ = lam * dx
+            J = jnp.where(ok, J + jnp.outer(rt - r - J @ s_, s_) / jnp.maximum(s_ @ s_, jnp.finfo(r.dtype).tiny), J)
+            out += (J, ok & (lam == 1.0) & reduced)
+        return out
 
-    k, x, r, state, result = jax.lax.while_loop(cond, body, (0, x0, r0, s0, result0))
+    init = (0, x0, r0, s0, result0)
+    if reuse:
+        J0, keep0 = jacobian
+        init += (jnp.asarray(J0, r0.dtype), jnp.asarray(keep0))
+    k, x, r, state, result, *kept = jax.lax.while_loop(cond, body, init)
     residual = jnp.where(jnp.all(jnp.isfinite(r)), jnp.max(jnp.abs(r)), jnp.inf)
-    return x, state, Stats(jnp.asarray(k), residual, result)
+    stats = Stats(jnp.asarray(k), residual, result)
+    return (x, state, stats, kept[0]) if reuse else (x, state, stats)
 
 
 def _zero_tangent(x):

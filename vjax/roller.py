@@ -114,7 +114,8 @@ class RollerResult(_scene.SceneResult):
     at psi_j. gaps: (Z,) clearance at the roller centre line, g(psi_j) = u_O + u_I - delta_j
     (zero while loaded). min_gaps: (Z,) smallest gap between roller and rings. active: (Z,)
     the roller carries load. cage_speed: omega_c; patch_speed: (omega_c - omega_O,
-    omega_c - omega_I) (rad/s).
+    omega_c - omega_I) (rad/s). jacobian: (Z + 1, Z + 1) the balance equations' Jacobian last
+    used by Newton (scaled equations per m), passed on by ``initial=``.
     iterations, residual, result: the Newton solve's report (Newton steps; the residual is the
     max-norm of the scaled equations; a failed ring contact solve makes a trial point
     invalid); ``converged`` is ``result == 0``.
@@ -144,6 +145,7 @@ class RollerResult(_scene.SceneResult):
     active: jax.Array
     cage_speed: jax.Array
     patch_speed: jax.Array
+    jacobian: jax.Array
     iterations: jax.Array
     residual: jax.Array
     result: jax.Array
@@ -187,7 +189,7 @@ def _ring_outputs(name, o, geo, psi):
     return F, T, p, u, u_at, g_at
 
 
-def _outputs(x, P, cfg, warm, stats, speeds):
+def _outputs(x, P, cfg, warm, stats, speeds, jacobian):
     Z, n = cfg.Z, cfg.n
     _, (out, geo, FO, FI, gap) = balance.equations(x, P, cfg, warm)
     zeros_n, zeros_z = jnp.zeros(n, x.dtype), jnp.zeros(Z, x.dtype)
@@ -219,7 +221,7 @@ def _outputs(x, P, cfg, warm, stats, speeds):
         penetration_outer=geo["dO"], penetration_inner=geo["dI"], deflection=geo["dO"] + geo["dI"],
         ring_shift=x[Z], u_at_rollers=jnp.stack([ua_O, ua_I]), gaps=gaps, min_gaps=gap,
         active=jnp.max(loads, axis=0) > 0, cage_speed=wc, patch_speed=jnp.stack([wO, wI]),
-        iterations=stats.iterations, residual=stats.residual, result=stats.result)
+        jacobian=jacobian, iterations=stats.iterations, residual=stats.residual, result=stats.result)
 
 
 @partial(jax.jit, static_argnums=(3, 4))
@@ -230,18 +232,21 @@ def _solve_bearing(P, start, speeds, cfg, options):
             r, (out, *_) = balance.equations(x, prm, cfg, warm)
             return r, balance.pressures(out, cfg.n, x.dtype), balance.contacts_converged(out)
 
+        dtype = prm.R_O.dtype
         if start is None:
-            x0, p0 = balance.initial_guess(prm, cfg), jnp.zeros((2, cfg.n), prm.R_O.dtype)
+            x0, p0 = balance.initial_guess(prm, cfg), jnp.zeros((2, cfg.n), dtype)
+            J0 = (jnp.zeros((cfg.Z + 1, cfg.Z + 1), dtype), False)
         else:  # continuation from a nearby solution: a starting point only
-            x0, p0 = jax.lax.stop_gradient(start)
-        x, warm, stats = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
-                                       max_step=jnp.full(x0.shape, 0.1) * prm.r)
-        return x, (warm, stats)
+            x0, p0, J = jax.lax.stop_gradient(start)
+            J0 = (J, True)
+        x, warm, stats, J = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
+                                          max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0)
+        return x, (warm, stats, J)
 
     # the derivative's contact solves start from the converged pressures
     residual = lambda x, aux, prm: balance.equations(x, prm, cfg, aux[0])[0]
-    x, (warm, stats) = _solve.implicit_root(solver, residual)(P)
-    return _outputs(x, P, cfg, warm, stats, speeds)
+    x, (warm, stats, J) = _solve.implicit_root(solver, residual)(P)
+    return _outputs(x, P, cfg, warm, stats, speeds, J)
 
 
 def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers: int, load, *,
@@ -324,7 +329,7 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
                 initial.roller_angles.shape != (Z,):
             raise ValueError("initial must be a RollerResult of the same bearing (n_rollers and n)")
         start = (jnp.concatenate([initial.penetration_outer, jnp.atleast_1d(initial.ring_shift)]),
-                 jnp.stack([initial.pressure, initial.pressure_shaft]))
+                 jnp.stack([initial.pressure, initial.pressure_shaft]), initial.jacobian)
     res = _solve_bearing(P, start, speeds, balance.Config(n, Z, options.contact), options)
     _solve.report("roller_bearing", res, throw)
     return res
