@@ -176,26 +176,33 @@ def _pin_in_hole(housing: Body, R, c, load, load_angle, omega, start, memory, op
     n = options.n
     R_pin = R - c
 
-    def solve(n_, q0, sigma_init):
+    def solve(n_, q0, sigma_init, tol=None):
         op = housing.operator(R, n_, omega, memory)
         # the grid measured from the load line: the pin moves along theta = 0
         theta = grid(n_)[0] - load_angle
         F = jnp.asarray(load, q0.dtype)[None]
-        return solve_contact(op, _pin_interference, (R, R_pin, theta), q0, _pin_force, F, options,
+        opts = options if tol is None else dataclasses.replace(options, tol=tol)
+        return solve_contact(op, _pin_interference, (R, R_pin, theta), q0, _pin_force, F, opts,
                              sigma_init=sigma_init)
+
+    def nested(n_, e0):
+        """A start for the grid n_ from the solution on an 8x coarser grid, itself started the
+        same way down to >= 64 elements (a cold start takes ~10 active-set steps; each coarse
+        level 2-4 cheap ones; the fine grid then needs 2-3). Only a starting point: no
+        derivative flows through it, and a coarse tolerance of 1e-6 is plenty for it."""
+        if n_ // 8 < 64:
+            return e0, None
+        e0c, sigma_c = nested(n_ // 8, e0)
+        coarse = solve(n_ // 8, e0c, sigma_c, tol=max(options.tol, 1e-6))
+        theta_c, theta_f = grid(n_ // 8)[0], grid(n_)[0]
+        return (jnp.where(coarse.converged, coarse.q, e0),
+                jnp.interp(theta_f, theta_c, coarse.pressure, period=2 * jnp.pi))
 
     if start is not None:
         e0, sigma_init = jnp.atleast_1d(start[0]), start[1]
     else:
         e0 = jnp.asarray(c + 0.5 * load / housing.material.E0, jnp.result_type(float))[None]   # some overlap
-        sigma_init = None
-        if n >= 1024:
-            # Cold starts need ~12 active-set iterations; from a solution on an 8x coarser grid
-            # (cheap) the fine grid needs 2-3. Only a starting point: no derivative flows through it.
-            coarse = solve(n // 8, e0, None)
-            theta_c, theta_f = grid(n // 8)[0], grid(n)[0]
-            sigma_init = jnp.interp(theta_f, theta_c, coarse.pressure, period=2 * jnp.pi)
-            e0 = jnp.where(coarse.converged, coarse.q, e0)
+        e0, sigma_init = nested(n, e0)
     sol = solve(n, e0, sigma_init)
     theta, alpha = grid(n)
 
