@@ -207,3 +207,18 @@ def test_bad_geometry_raises_naming_the_argument():
         roller_bearing(SLS, SLS, RO, RI, D, Z, -1.0, options=opts)
     with pytest.raises(ValueError, match="temperature and shift"):
         roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, options=opts, temperature=30.0)
+
+
+def test_speed_sweep_with_kept_jacobians_equals_cold_solves():
+    """Continuation along speed (initial=: deflections, pressures and the Jacobian, which Newton
+    keeps and Broyden-updates) lands on the cold solutions."""
+    prev = None
+    for w in (1e-2, 0.1, 0.3, 1.0, 3.0, 10.0):
+        warm = run(w, initial=prev)
+        cold = run(w)
+        assert bool(warm.converged) and bool(cold.converged)
+        np.testing.assert_allclose(np.asarray(warm.roller_loads), np.asarray(cold.roller_loads), rtol=0,
+                                   atol=1e-8 * LOAD)
+        assert abs(float(warm.torque) - float(cold.torque)) <= 1e-8 * abs(float(cold.torque))
+        assert warm.jacobian.shape == (10, 10) and bool(jnp.all(jnp.isfinite(warm.jacobian)))
+        prev = warm
