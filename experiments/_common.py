@@ -7,6 +7,8 @@
 - :func:`time_fn`: first-call time (tracing + compilation + one run) separated from the
   median of warm calls, each synchronised with ``block_until_ready``.
 - :func:`format_table` / :func:`print_table`: a plain fixed-width text table.
+- :func:`run_at_commit`: run a snippet against the project as it was at a git commit (a
+  temporary worktree), for a baseline timed in the same run as today's code.
 
 Call :func:`enable_x64` (or :func:`setup`) **before** importing vjax or running any JAX
 computation, e.g. at the top of a script::
@@ -28,7 +30,7 @@ from pathlib import Path
 from fitting import files
 
 __all__ = ["Check", "StageReport", "enable_x64", "setup", "atomic_write_text", "save_figure",
-           "write_csv", "time_fn", "format_table", "print_table"]
+           "write_csv", "time_fn", "format_table", "print_table", "run_at_commit"]
 
 
 def enable_x64() -> None:
@@ -101,6 +103,34 @@ def device_note() -> str:
     devices = jax.devices()
     return (f"jax {jax.__version__} on {devices[0].platform} ({devices[0].device_kind}) x {len(devices)} "
             f"device(s), {os.cpu_count()} CPUs, {platform.machine()}")
+
+
+def run_at_commit(ref: str, code: str, timeout: float = 3600.0) -> str:
+    """Run the Python snippet ``code`` in a new interpreter with the project as it was at git
+    commit ``ref`` (checked out in a temporary worktree, removed afterwards) first on the
+    import path; returns its standard output. Raises RuntimeError with the end of its standard
+    error if it fails (or if ``ref`` is not a commit of this checkout)."""
+    import os
+    import subprocess
+    import sys
+    import tempfile
+
+    root = Path(__file__).resolve().parent.parent
+    with tempfile.TemporaryDirectory() as tmp:
+        tree = os.path.join(tmp, "tree")
+        add = subprocess.run(["git", "-C", str(root), "worktree", "add", "--detach", "-f", tree, ref],
+                             capture_output=True, text=True)
+        if add.returncode:
+            raise RuntimeError(f"cannot check out {ref!r} for the baseline: {add.stderr.strip()}")
+        try:
+            env = dict(os.environ, PYTHONPATH=tree)
+            p = subprocess.run([sys.executable, "-c", code], cwd=tree, env=env, capture_output=True, text=True,
+                               timeout=timeout)
+        finally:
+            subprocess.run(["git", "-C", str(root), "worktree", "remove", "--force", tree], capture_output=True)
+    if p.returncode:
+        raise RuntimeError(f"the baseline at {ref} failed ({p.returncode}):\n{p.stderr[-2000:]}")
+    return p.stdout
 
 
 def atomic_write_text(path, text: str) -> Path:

@@ -3,6 +3,7 @@
 Run::
 
     PYTHONPATH=. python -m experiments.bench_roller [out_dir] [--quick] [--no-vmap] [--errors-only]
+                                                    [--baseline REF]
 
 Thesis case (R_O = 6 mm, R_I = 4 mm, D = 2 mm, Z = 9, zero clearance, SLS E0 = 1 MPa,
 Einf = 10 MPa, tau = 0.01 s, nu = 0.5, F~ = 6.5e-3, periodic memory), omega~ = omega_c tau
@@ -15,7 +16,10 @@ from 1e-4 to 1e4 (60 speeds), n elements per ring. Three ways to run the sweep:
   loops run in lock step until the slowest speed has converged).
 
 Reported: compile time (first call: tracing + XLA compilation + one run) and the median
-of warm runs of the whole sweep. Then the discretization error: at five speeds, n = 1024,
+of warm runs of the whole sweep. ``--baseline REF`` also times the ``scan`` sweep with the
+code of git commit REF (a temporary worktree, a separate process, in the same run), e.g.
+``--baseline 395f6b5``, the last commit before the solver core kept Jacobians and loosened
+the active-set steps' inner solves. Then the discretization error: at five speeds, n = 1024,
 2048 and 4096 against a 4x finer grid (n = 16384): roller loads (max error / max load),
 ring shift (relative) and outer-ring torque (relative to the sweep's peak torque), with
 the observed order. Outputs ``bench_roller.csv`` and ``bench_roller.txt``.
@@ -24,7 +28,6 @@ from __future__ import annotations
 
 import os
 import statistics
-import sys
 import time
 
 from experiments import _common
@@ -91,7 +94,23 @@ def _time(fn, arg, repeats):
     return first, (statistics.median(samples) if samples else float("nan")), out
 
 
-def main(out_dir="experiments/out", quick=False, vmap=True, timings=True):
+_BASELINE = """
+from experiments import bench_roller as br
+import jax.numpy as jnp, numpy as np
+ws = jnp.asarray(br.shaft(np.logspace(-4, 4, {nw})))
+first, med, res = br._time(br.make({n})["scan"], ws, 2)
+print("BASELINE", first, med, bool(np.all(res["converged"])), float(np.mean(res["iterations"])))
+"""
+
+
+def baseline_scan(ref, n, nw):
+    """(first call s, warm median s, converged, mean Newton steps) of the scan sweep at commit ref."""
+    out = _common.run_at_commit(ref, _BASELINE.format(n=n, nw=nw))
+    first, med, conv, its = out.split("BASELINE")[-1].split()
+    return float(first), float(med), conv == "True", float(its)
+
+
+def main(out_dir="experiments/out", quick=False, vmap=True, timings=True, baseline=None):
     out = _common.setup(out_dir)
     print(f"device: {_common.device_note()}", flush=True)
     n = 1024 if quick else 4096
@@ -116,6 +135,14 @@ def main(out_dir="experiments/out", quick=False, vmap=True, timings=True):
                      f"{med:6.2f} s over {rep} run(s) = {1e3 * med / nw:6.1f} ms/speed; converged {conv}; "
                      f"Newton iterations {min(its)}-{max(its)} (mean {np.mean(its):.2f})")
         rows.append([name, n, nw, compile_s, first, med, 1e3 * med / nw, conv])
+        print(lines[-1], flush=True)
+    if baseline is not None and timings:
+        first, med, conv, its = baseline_scan(baseline, n, nw)
+        now = next(r for r in rows if r[0] == "scan")
+        lines.append(f"  scan at {baseline} (same run): compile ~ {first - med:6.1f} s, warm median {med:6.2f} s "
+                     f"({1e3 * med / nw:.1f} ms/speed, converged {conv}, mean Newton steps {its:.2f}); "
+                     f"today / baseline = {now[5] / med:.2f}")
+        rows.append([f"scan@{baseline}", n, nw, first - med, first, med, 1e3 * med / nw, conv])
         print(lines[-1], flush=True)
     lines.append(f"  target: under 10 s warm for the sweep; load average during the run {os.getloadavg()[0]:.1f}")
 
@@ -163,6 +190,12 @@ def main(out_dir="experiments/out", quick=False, vmap=True, timings=True):
 
 
 if __name__ == "__main__":
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    main(args[0] if args else "experiments/out", quick="--quick" in sys.argv, vmap="--no-vmap" not in sys.argv,
-         timings="--errors-only" not in sys.argv)
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("out_dir", nargs="?", default="experiments/out")
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--no-vmap", action="store_true")
+    ap.add_argument("--errors-only", action="store_true")
+    ap.add_argument("--baseline", metavar="REF", help="also time the scan sweep at this git commit")
+    a = ap.parse_args()
+    main(a.out_dir, quick=a.quick, vmap=not a.no_vmap, timings=not a.errors_only, baseline=a.baseline)

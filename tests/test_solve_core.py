@@ -21,13 +21,14 @@ def exact_root():
     return x
 
 
-@pytest.mark.parametrize("name", ["exact at another point", "zeros", "wrong sign", "none yet"])
+@pytest.mark.parametrize("name", ["exact at another point", "zeros", "wrong sign", "none (exact Newton)"])
 def test_kept_jacobian_reaches_the_same_root(name):
     x0 = jnp.array([0.3, -0.4, 0.2])
     J_far = jax.jacfwd(lambda x: equations(x, 0)[0])(jnp.array([1.0, 1.0, 1.0]))
-    J0 = {"exact at another point": (J_far, True), "zeros": (jnp.zeros((3, 3)), True),
-          "wrong sign": (-J_far, True), "none yet": (jnp.zeros((3, 3)), False)}[name]
-    x, _, stats, J = jax.jit(lambda x0, J0: _solve.newton(equations, x0, 0, tol=1e-12, max_iter=60, jacobian=J0))(x0, J0)
+    J0 = {"exact at another point": J_far, "zeros": jnp.zeros((3, 3)), "wrong sign": -J_far,
+          "none (exact Newton)": None}[name]
+    x, _, stats, J = jax.jit(lambda x0, J0: _solve.newton(equations, x0, 0, tol=1e-12, max_iter=60, jacobian=J0,
+                                                          return_jacobian=True))(x0, J0)
     assert int(stats.result) == _solve.SUCCESS, name
     np.testing.assert_allclose(np.asarray(x), np.asarray(exact_root()), rtol=0, atol=1e-11)
     # the Jacobian handed back is close to the one at the root (fresh or Broyden-updated)
@@ -41,10 +42,10 @@ def test_kept_jacobian_at_the_root_needs_no_recomputation():
     root = exact_root()
     J_root = jax.jacfwd(lambda x: equations(x, 0)[0])(root)
     x0 = root + 1e-3
-    x, _, stats, J = _solve.newton(equations, x0, 0, tol=1e-13, max_iter=20, jacobian=(J_root, True))
+    x, _, stats, J = _solve.newton(equations, x0, 0, tol=1e-13, max_iter=20, jacobian=J_root)
     assert int(stats.result) == _solve.SUCCESS and int(stats.iterations) <= 4
     # with a kept Jacobian the first step is x0 - J_root^-1 r(x0): one step, no jacfwd
-    x1, _, _, _ = _solve.newton(equations, x0, 0, tol=1e-13, max_iter=1, jacobian=(J_root, True))
+    x1, _, _, _ = _solve.newton(equations, x0, 0, tol=1e-13, max_iter=1, jacobian=J_root)
     np.testing.assert_allclose(np.asarray(x1), np.asarray(x0 - jnp.linalg.solve(J_root, equations(x0, 0)[0])),
                                rtol=1e-14)
 
@@ -53,5 +54,5 @@ def test_a_step_that_fails_with_a_fresh_jacobian_is_reported_stalled():
     """Equations with no root (r = x^2 + 1): the retry rule must not hide a true stall."""
     no_root = lambda x, s: (x ** 2 + 1.0, s, jnp.asarray(True))
     _, _, stats, _ = _solve.newton(no_root, jnp.array([0.5]), 0, tol=1e-12, max_iter=40,
-                                   jacobian=(jnp.zeros((1, 1)), False))
+                                   jacobian=jnp.zeros((1, 1)))
     assert int(stats.result) in (_solve.STALLED, _solve.MAX_ITERATIONS, _solve.NONFINITE)

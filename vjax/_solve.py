@@ -81,7 +81,7 @@ def report(what: str, stats: Stats, throw: bool) -> None:
 
 
 def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None,
-           jacobian=None):
+           jacobian=None, return_jacobian=False):
     """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian,
     or with ``linear_solve(x, state, r) -> dx`` solving J dx = -r (a matrix-free Krylov solve).
 
@@ -90,16 +90,16 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     accept (finite film, converged inner solves). Each iteration takes the Newton step
     (scaled down so that ``|dx_i| <= max_step_i``) and halves it until the trial point is valid
     and 0.5|r|^2 decreased by the Armijo factor ``1 - 1e-4 lam``. Converged when
-    ``max|r| <= tol`` at a valid point. Returns ``(x, state, Stats)``.
+    ``max|r| <= tol`` at a valid point. Returns ``(x, state, Stats)``, and the last Jacobian
+    used, ``(x, state, Stats, J)``, with ``return_jacobian`` or ``jacobian``.
 
-    ``jacobian``: reuse Jacobians, for equations whose Jacobian costs many evaluations of
-    ``fn`` (one tangent solve per column). Pass ``(J0, keep)``: an (m, m) Jacobian and whether
-    to use it, e.g. that of the previous point of a continuation and True, or zeros and False
-    to compute the first one. A Jacobian is kept while its steps shrink ``max|r|`` at least
-    fourfold with no line search (Broyden-updated after each step: cheap and, near the root,
-    superlinear) and recomputed at the current point otherwise; a step that fails with a kept Jacobian is retried with a
-    fresh one, not reported as stalled. Then returns ``(x, state, Stats, J)``, J the last
-    Jacobian used (to pass on to the next solve).
+    ``jacobian``: an (m, m) Jacobian of a nearby problem (the previous point of a
+    continuation), for equations whose Jacobian costs many evaluations of ``fn`` (a tangent
+    solve per column). Newton starts with it and keeps it while its steps shrink ``max|r|``
+    at least fourfold with no line search, Broyden-updated after each step (cheap steps,
+    superlinear near the root); otherwise it recomputes it at the current point. A step that
+    fails with a kept Jacobian is retried with a fresh one, not reported as stalled. (Under
+    ``vmap`` both branches of that choice run: continuation belongs in a loop or ``scan``.)
     """
     def fn_aux(x, state):
         out = fn(x, state)
@@ -107,6 +107,7 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
 
     exact_jacobian = jax.jacfwd(fn_aux, has_aux=True)
     reuse = jacobian is not None
+    carry = reuse or return_jacobian
     half_sq = lambda r: 0.5 * jnp.sum(r * r)
     r0, s0, v0 = fn(x0, state0)
     ok0 = jnp.all(jnp.isfinite(r0)) & v0
@@ -119,6 +120,7 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
 
     def body(c):
         k, x, r, state, _ = c[:5]
+        keep = False
         if reuse:
             J, keep = c[5:]
             # only the Jacobian: r and state at x are those of the accepted point already
@@ -152,30 +154,31 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
 
         lam, rt, st, ok, _ = jax.lax.while_loop(ls_cond, ls_body, (jnp.asarray(1.0, r.dtype), *trial(1.0), 0))
         ok = ok & finite
-        reduced = jnp.max(jnp.abs(rt)) <= 0.25 * jnp.max(jnp.abs(r))
-        x = jnp.where(ok, x + lam * dx, x)
+        x_new = jnp.where(ok, x + lam * dx, x)
         r_new = jnp.where(ok, rt, r)
         state = jax.tree_util.tree_map(lambda a, b: jnp.where(ok, a, b), st, state)
-        # a failed step with a kept Jacobian is retried with a fresh one
-        retry = ~ok & keep if reuse else False
+        retry = ~ok & keep      # a failed step with a kept Jacobian is retried with a fresh one
         result = jnp.where(~finite & ~retry, NONFINITE, jnp.where(~ok & ~retry, STALLED, jnp.where(
             jnp.max(jnp.abs(r_new)) <= tol, SUCCESS, MAX_ITERATIONS)))
-        out = (k + 1, x, r_new, state, result)
+        out = (k + 1, x_new, r_new, state, result)
         if reuse:
             # Broyden's rank-one update makes the kept J exact along the step just taken
             s_ = lam * dx
             J = jnp.where(ok, J + jnp.outer(rt - r - J @ s_, s_) / jnp.maximum(s_ @ s_, jnp.finfo(r.dtype).tiny), J)
+            reduced = jnp.max(jnp.abs(rt)) <= 0.25 * jnp.max(jnp.abs(r))
             out += (J, ok & (lam == 1.0) & reduced)
+        elif carry:
+            out += (J, jnp.asarray(False))
         return out
 
     init = (0, x0, r0, s0, result0)
-    if reuse:
-        J0, keep0 = jacobian
-        init += (jnp.asarray(J0, r0.dtype), jnp.asarray(keep0))
+    if carry:
+        J0 = jnp.zeros((r0.shape[0], x0.shape[0]), r0.dtype) if jacobian is None else jnp.asarray(jacobian, r0.dtype)
+        init += (J0, jnp.asarray(reuse))
     k, x, r, state, result, *kept = jax.lax.while_loop(cond, body, init)
     residual = jnp.where(jnp.all(jnp.isfinite(r)), jnp.max(jnp.abs(r)), jnp.inf)
     stats = Stats(jnp.asarray(k), residual, result)
-    return (x, state, stats, kept[0]) if reuse else (x, state, stats)
+    return (x, state, stats, kept[0]) if carry else (x, state, stats)
 
 
 def _zero_tangent(x):

@@ -232,15 +232,13 @@ def _solve_bearing(P, start, speeds, cfg, options):
             r, (out, *_) = balance.equations(x, prm, cfg, warm)
             return r, balance.pressures(out, cfg.n, x.dtype), balance.contacts_converged(out)
 
-        dtype = prm.R_O.dtype
-        if start is None:
-            x0, p0 = balance.initial_guess(prm, cfg), jnp.zeros((2, cfg.n), dtype)
-            J0 = (jnp.zeros((cfg.Z + 1, cfg.Z + 1), dtype), False)
-        else:  # continuation from a nearby solution: a starting point only
-            x0, p0, J = jax.lax.stop_gradient(start)
-            J0 = (J, True)
+        if start is None:   # exact Newton
+            x0, p0, J0 = balance.initial_guess(prm, cfg), jnp.zeros((2, cfg.n), prm.R_O.dtype), None
+        else:  # continuation from a nearby solution (a starting point only): Jacobians kept
+            x0, p0, J0 = jax.lax.stop_gradient(start)
         x, warm, stats, J = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
-                                          max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0)
+                                          max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0,
+                                          return_jacobian=True)
         return x, (warm, stats, J)
 
     # the derivative's contact solves start from the converged pressures
