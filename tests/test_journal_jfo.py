@@ -78,7 +78,8 @@ def test_groove_away_from_widest_gap(supply_angle):
         # one cavity, from the groove on (the film ruptures at once in the diverging gap)
         f = np.asarray(jfo.film_fraction)
         k = np.flatnonzero(f < 1.0 - 1e-12)
-        assert np.all(np.diff(k) == 1) and np.asarray(jfo.pressure)[k[0] - 1] == 0.0
+        p = np.asarray(jfo.pressure)
+        assert np.all(np.diff(k) == 1) and abs(p[k[0] - 1]) <= 1e-12 * p.max()
 
 def test_gradient_against_finite_differences():
     """d eps / d viscosity through the implicit derivative of the JFO solve (groove fixed,
