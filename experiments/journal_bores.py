@@ -22,11 +22,13 @@ a sizeable fraction of R: a soft conformal contact, beyond Newton's reach from a
 and beyond the small strains of linear viscoelasticity; the solver says so in its error.
 
 Outputs: ``journal_bores.csv``, ``journal_bores.png`` (the soft bore's map), ``journal_bores.txt``.
+:func:`stage` is the main job's "bores" stage (``--quick``: every other speed and load).
 """
 from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
 from experiments import _common
 
@@ -86,16 +88,18 @@ def plot(path, soft, speeds, loads):
     ax[0].set_yticks(range(nl), [f"{w:g}" for w in loads])
     ax[0].set_xlabel("journal speed (rad/s)")
     ax[0].set_ylabel("load (N/m)")
-    ax[0].set_title("soft Prony bore (E0 = 1 MPa): green converged, red failed")
+    ax[0].set_title("soft Prony bore (E0 = 1 MPa): green converged, red failed", fontsize=10)
     for i, w in enumerate(speeds):
         rows = soft[i * nl:(i + 1) * nl]
         ok = [r for r in rows if r["converged"]]
         if ok:
-            ax[1].plot([r["load"] for r in ok], [r["eps"] for r in ok], "o-", label=f"{w:g} rad/s")
+            ax[1].plot([r["load"] for r in ok], [r["hmin_over_c"] for r in ok], "o-", label=f"{w:g} rad/s")
     ax[1].set_xscale("log")
+    ax[1].set_xticks(loads, [f"{v:g}" for v in loads])
+    ax[1].minorticks_off()
     ax[1].set_xlabel("load (N/m)")
-    ax[1].set_ylabel("eccentricity e/c")
-    ax[1].set_title("converged points: eccentricity")
+    ax[1].set_ylabel("minimum film / clearance")
+    ax[1].set_title("converged points: the soft bore opens the film")
     ax[1].legend(fontsize=8)
     _common.save_figure(fig, path)
 
@@ -138,6 +142,34 @@ def main(out_dir="experiments/out", quick=False):
     print(text)
     _common.atomic_write_text(out / "journal_bores.txt", text + "\n")
     return rows
+
+
+def stage(out_dir, quick=False):
+    """The main job's stage: :func:`main` and its checks."""
+    rows = main(out_dir, quick)
+    rigid = [r for r in rows if r["bore"] == "nearly rigid"]
+    soft = [r for r in rows if r["bore"] == "soft"]
+    modest = [r for r in soft if r["D"] <= 25]
+    huge = [r for r in soft if r["D"] >= 100]
+    checks = (
+        _common.Check("nearly rigid bore: largest number of Newton steps (100 and 1000 rad/s, direct)",
+                      max(r["iterations"] + 100 * r["stages"] for r in rigid), 10, 0,
+                      "a few Newton steps from a good start", "max"),
+        _common.Check("soft bore: fraction of points with film-shape deformation <= 25 clearances that converged",
+                      sum(r["converged"] for r in modest) / len(modest), 1.0, 0, "all of them", "min"),
+        _common.Check("soft bore: failures at >= 100 clearances whose error names the cause (fraction)",
+                      sum("clearances under this load" in r["message"] for r in huge) / max(len(huge), 1), 1.0, 0,
+                      "every failure says why", "min"),
+    )
+    about = ("Journal bearings (R = 50 mm, c = 50 um, eta = 0.01 Pa s, n = 256) in Prony bores: a nearly rigid one "
+             "(E0 = 1 GPa) at 2e4 N/m, and a soft one (E0 = 1 MPa) over two decades of journal speed and load. D is "
+             "the bore's film-shape deformation in clearances (mode-2 compliance x mean pressure / c); where it "
+             "reaches ~100 the bore's displacement is a large fraction of R, outside linear viscoelasticity, and the "
+             "solver's error says so.")
+    text = (Path(out_dir) / "journal_bores.txt").read_text()
+    return _common.StageReport(text, about, checks, (("journal_bores.png", "soft bore: converged (green) or "
+                                                      "failed (red), Newton steps, stages, D; minimum film "
+                                                      "over clearance"),))
 
 
 if __name__ == "__main__":

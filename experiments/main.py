@@ -13,7 +13,10 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
 6. ``bodies``: bushings and liners of finite thickness against the infinite plane (the
    thesis's test bearing as built, a pin in a thin bushing, a water-lubricated journal bearing);
 7. ``dynamics``: journal bearings' stiffness and damping versus whirl frequency (rigid against
-   the closed forms, a polymer liner, the thesis case) and the oil-whirl threshold.
+   the closed forms, a polymer liner, the thesis case) and the oil-whirl threshold;
+8. ``bores``: journal bearings in a nearly rigid and a soft Prony bore, the soft one over two
+   decades of speed and load: where the solver converges, in how many steps, and its message
+   where the bore's deformation leaves small-strain theory.
 
 ``<out>/summary.md`` opens with what was computed and a table of every stage's checks
 (value, reference, tolerance, PASS/FAIL), defines the symbols, then gives each stage's
@@ -38,6 +41,7 @@ STAGES = [
     ("journal", "experiments.journal_figures", "main"),
     ("bodies", "experiments.bodies_figures", "main"),
     ("dynamics", "experiments.journal_dynamics", "main"),
+    ("bores", "experiments.journal_bores", "stage"),
 ]
 
 

@@ -11,7 +11,7 @@ try:
 except ImportError:  # plain `pytest` puts tests/ on sys.path, `python -m pytest` the working dir
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from experiments import _common, bench_operator, foundation_figures, journal_dynamics  # noqa: E402
+from experiments import _common, bench_operator, foundation_figures, journal_bores, journal_dynamics  # noqa: E402
 
 
 def _numeric_cells(path):
@@ -113,3 +113,11 @@ def test_journal_dynamics_quick(tmp_path):
     header, values = _numeric_cells(tmp_path / "dynamics_liner.csv")
     assert header[:4] == ["speed", "frequency", "kxx", "kxy"] and all(math.isfinite(v) for v in values)
     assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
+
+
+def test_journal_bores_quick(tmp_path):
+    report = journal_bores.stage(out_dir=tmp_path, quick=True)
+    assert report.checks and all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]
+    assert (tmp_path / "journal_bores.png").stat().st_size > 10_000
+    header, values = _numeric_cells(tmp_path / "journal_bores.csv")
+    assert "iterations" in header and all(math.isfinite(v) for v in values)
