@@ -634,7 +634,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     else:
         x0 = _guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
-    _solve.report("journal_bearing" + _deformation_hint(pr), sol, throw)
+    _solve.report("journal_bearing" + _failure_hint(pr, n), sol, throw)
     return sol
 
 
@@ -652,18 +652,29 @@ def _refine_periodic(values, n):
     return jnp.maximum(p, 0.0)
 
 
-def _deformation_hint(pr: _Params) -> str:
-    """A note for the failure message when the bodies' deformation under the load dwarfs the
-    clearance: mode 2 (the first that changes the film's shape) of the mean pressure W/(2R)."""
+def _failure_hint(pr: _Params, n: int) -> str:
+    """A note for the failure message when the bodies make the problem one this solver is not
+    built for: their deformation under the load dwarfs the clearance (mode 2, the first that
+    changes the film's shape, of the mean pressure W/(2R)), or the load far exceeds the rigid
+    film's capacity, so that the bodies carry it through an elastohydrodynamic film far
+    thinner than the clearance, whose inlet and exit the grid does not resolve."""
     ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
-    if not ops or not _checks.is_concrete((pr.c, pr.p_ref, *[op.symbol for op in ops])):
+    if not ops or not _checks.is_concrete((pr.c, pr.p_ref, pr.W, pr.eta, pr.v, *[op.symbol for op in ops])):
         return ""
     ratio = float(sum(abs(complex(op.symbol[2])) for op in ops) * pr.p_ref / pr.c)
-    if ratio < 30:      # continuation has been seen to converge up to ~20
-        return ""
-    return (f" (the bodies' compliance deforms the film's shape by ~{ratio:.0f} clearances under this load: a "
-            f"soft conformal contact, beyond this Newton solver's reach and, past strains of a few percent, beyond "
-            f"linear viscoelasticity; stiffer bodies, a larger clearance or a smaller load)")
+    if ratio >= 30:      # continuation has been seen to converge up to ~20
+        return (f" (the bodies' compliance deforms the film's shape by ~{ratio:.0f} clearances under this load: a "
+                f"soft conformal contact, beyond this Newton solver's reach and, past strains of a few percent, "
+                f"beyond linear viscoelasticity; stiffer bodies, a larger clearance or a smaller load)")
+    # rigid half-Sommerfeld film at this load: G = W c^2 / (12 eta |v| R^2) ~ 1 / (3 (1 - eps))
+    G = float(pr.W * pr.c**2 / (12 * pr.eta * abs(float(pr.v)) * pr.R**2))
+    thin = 1.0 / (3.0 * G)
+    if n * thin < 0.01:  # converged with n h/c >= 0.018, failed at <= 0.0018 (thesis HS bore, slowed down)
+        return (f" (the load is {G:.2g} times the rigid film's capacity scale: a rigid bearing would run at a film of "
+                f"~{thin:.1e} c, so the bodies carry the load through an elastohydrodynamic film far thinner than "
+                f"their deformation, whose inlet and exit {n} elements do not resolve; about {0.02 / thin:.0e} "
+                f"elements, a higher speed, a larger viscosity or a smaller load)")
+    return ""
 
 
 def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
