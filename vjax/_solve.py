@@ -108,6 +108,8 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     exact_jacobian = jax.jacfwd(fn_aux, has_aux=True)
     reuse = jacobian is not None
     carry = reuse or return_jacobian
+    if carry and linear_solve is not None:
+        raise ValueError("newton: jacobian= and return_jacobian= need the dense Jacobian, not a linear_solve")
     half_sq = lambda r: 0.5 * jnp.sum(r * r)
     r0, s0, v0 = fn(x0, state0)
     ok0 = jnp.all(jnp.isfinite(r0)) & v0
