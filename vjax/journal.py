@@ -263,12 +263,22 @@ def _offset(x, cfg: _Config):
     return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
 
 
+def _load_number(pr: _Params):
+    """G = |W| c^2 / (12 eta |v| R^2): the load over the rigid film's capacity scale (the rigid
+    half-Sommerfeld bearing runs at the eccentricity with this load number)."""
+    return pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
+
+
+def _gmres(matvec, precond):
+    """b -> the GMRES solution of one Newton (or derivative) system, preconditioned."""
+    return lambda b: _krylov.gmres(matvec, b, precond, KRYLOV_TOL, 200)[0]
+
+
 def _guess(pr: _Params, n, cfg: _Config):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
     moved with the bodies' rigid displacement under the load."""
     v = pr.v
-    G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(v) * pr.R**2)
-    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(G), 0.95)
+    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(_load_number(pr)), 0.95)
     phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     # The load's mode-1 pressure moves the bodies rigidly by D (complex, m): place the journal
     # so that the film keeps the rigid estimate's shape and its angle to the load,
@@ -299,14 +309,15 @@ def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
     # Mode 1 of the loading pressure is the film force, which equals the load at equilibrium:
     # take it from the load (it moves the bodies rigidly, by up to hundreds of clearances for a
     # soft bore) so that Newton does not have to find it - the same root, a far milder system.
-    P = jnp.fft.rfft(p_load)
-    P = P.at[1].set(pr.W * jnp.exp(-1j * (_offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
-    deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
     zero = jnp.zeros_like(p)
-    uB = zero if pr.op_B is None else deform(pr.op_B)
-    uJ = zero if pr.op_J is None else deform(pr.op_J)
     if deformation is not None:
         uB, uJ = deformation, zero
+    else:
+        P = jnp.fft.rfft(p_load)
+        P = P.at[1].set(pr.W * jnp.exp(-1j * (_offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
+        deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
+        uB = zero if pr.op_B is None else deform(pr.op_B)
+        uJ = zero if pr.op_J is None else deform(pr.op_J)
     h = pr.c * (1 - x[n] * jnp.cos(theta - _offset(x, cfg))) + uB + uJ
     hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
     return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
@@ -349,7 +360,7 @@ def _newton(x0, pr, cfg, smoothing=0.0):
     if cfg.options.krylov:
         def linear_solve(x, state, r):
             solve, _, matvec, _ = _linear_model(x, pr, cfg, smoothing)
-            return _krylov.gmres(matvec, -r, solve, KRYLOV_TOL, 200)[0]
+            return _gmres(matvec, solve)(-r)
     x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
                                 linear_solve=linear_solve)
     physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c, _offset(x, cfg)) > 0
@@ -416,8 +427,7 @@ def _staged(pr: _Params, t):
     such that the rigid bearing runs at eps ~ 0.6 (thick film, mild coupling);
     t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
     """
-    G = pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
-    M = jnp.maximum(1.0, G / reference.half_sommerfeld_load(0.6))
+    M = jnp.maximum(1.0, _load_number(pr) / reference.half_sommerfeld_load(0.6))
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
     s = jnp.clip(t, 0.0, 1.0)
     scale = lambda op: None if op is None else RingOperator(op.symbol * s, op.n)
@@ -563,8 +573,7 @@ def _run(pr: _Params, cfg: _Config):
     if cfg.options.krylov:
         def linear_solver(x, aux, prm):
             solve, solve_t, matvec, matvec_t = _linear_model(x, prm, cfg)
-            return (lambda b: _krylov.gmres(matvec, b, solve, KRYLOV_TOL, 200)[0],
-                    lambda b: _krylov.gmres(matvec_t, b, solve_t, KRYLOV_TOL, 200)[0])
+            return _gmres(matvec, solve), _gmres(matvec_t, solve_t)
     x, (stats, stages) = _solve.implicit_root(lambda prm: _solver(prm, cfg), residual, linear_solver)(pr)
     return _outputs(x, pr, cfg, stats, stages)
 
@@ -666,8 +675,8 @@ def _failure_hint(pr: _Params, n: int) -> str:
         return (f" (the bodies' compliance deforms the film's shape by ~{ratio:.0f} clearances under this load: a "
                 f"soft conformal contact, beyond this Newton solver's reach and, past strains of a few percent, "
                 f"beyond linear viscoelasticity; stiffer bodies, a larger clearance or a smaller load)")
-    # rigid half-Sommerfeld film at this load: G = W c^2 / (12 eta |v| R^2) ~ 1 / (3 (1 - eps))
-    G = float(pr.W * pr.c**2 / (12 * pr.eta * abs(float(pr.v)) * pr.R**2))
+    # rigid half-Sommerfeld film at this load: G ~ 1 / (3 (1 - eps)) for eps -> 1
+    G = float(_load_number(pr))
     thin = 1.0 / (3.0 * G)
     cause = (f" (the load is {G:.2g} times the rigid film's capacity scale: a rigid bearing would run at a film of "
              f"~{thin:.1e} c, so the bodies carry the load through an elastohydrodynamic film far thinner than "
