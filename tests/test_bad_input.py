@@ -135,6 +135,7 @@ CASES = [
     ("options-max_iter-zero", lambda: ContactOptions(max_iter=0), r"max_iter must be an integer >= 1"),
     ("options-krylov-float", lambda: ContactOptions(krylov=10.5), r"krylov must be an integer >= 1"),
     ("options-krylov_method", lambda: ContactOptions(krylov_method="cg"), r"krylov_method must be one of"),
+    ("options-window", lambda: ContactOptions(window="yes"), r"window must be True or False"),
     # ---- bodies
     ("hole-ref-length", lambda: vjax.hole(M, ref_length=-1.0), r"ref_length must be > 0"),
     ("hole-material", lambda: vjax.hole("rubber"), r"material must be a vjax.Material"),

@@ -1,6 +1,6 @@
-"""The restricted solves of the contact solver on a window of the ring (short contact arcs):
-the arc finder against brute force, and the windowed solves against a dense LAPACK solve of
-M_AA, alone and under vmap with arcs of different lengths."""
+"""The restricted solves of the contact solver on a window of the ring (contact arcs of at
+most n/8 elements): the arc finder against brute force, and the windowed solves against a
+dense LAPACK solve of M_AA, alone and under vmap with arcs of different lengths."""
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -51,15 +51,15 @@ def _dense_solve(op, mask, rhs):
     return x
 
 
-@pytest.mark.parametrize("runs, window", [([(N - 10, 25)], N // 8), ([(200, 60)], N // 4),
-                                           ([(0, 200)], N), ([(30, 10), (490, 5)], N // 4)])
-def test_windowed_restricted_solve_equals_the_dense_solve(runs, window):
+@pytest.mark.parametrize("runs, on_window", [([(N - 10, 25)], True), ([(200, 64)], True), ([(200, 65)], False),
+                                              ([(0, 200)], False), ([(30, 10), (490, 5)], True)])
+def test_windowed_restricted_solve_equals_the_dense_solve(runs, on_window):
     op = _operator()
-    system = contact._system(op)
+    system = contact._system(op, True)
     mask = _mask(*runs)
     rhs = jnp.asarray(np.random.default_rng(0).standard_normal((2, N)))
     start, length = contact._arc(jnp.asarray(mask))
-    assert min([w.n for w, _ in system.windows if length <= w.n // 2] + [N]) == window
+    assert system.window[0].n == N // 4 and (int(length) <= N // 8) == on_window
     opts = vjax.ContactOptions(krylov_tol=1e-13, krylov=200)
     x, rel = jax.jit(lambda a, b: contact._restricted_solve(system, a, b, opts))(jnp.asarray(mask), rhs)
     assert float(rel) < 1e-12
@@ -68,11 +68,11 @@ def test_windowed_restricted_solve_equals_the_dense_solve(runs, window):
         np.testing.assert_allclose(row, want, rtol=0, atol=1e-10 * np.max(np.abs(want)))
 
 
-def test_windowed_solve_under_vmap_takes_the_window_of_the_longest_arc():
-    """A batch mixes a short arc (window n/8 alone) with one that needs the whole ring and
-    one that needs n/4: every member's solution equals its dense solve."""
+def test_windowed_solve_under_vmap_matches_each_members_dense_solve():
+    """A batch of two short arcs (solved on the window) and then the same with a long one
+    (the whole batch on the whole ring): every member's solution equals its dense solve."""
     op = _operator()
-    system = contact._system(op)
+    system = contact._system(op, True)
     masks = np.stack([_mask((N - 10, 25)), _mask((100, 300)), _mask((200, 60))])
     rhs = jnp.asarray(np.random.default_rng(1).standard_normal((3, N)))
     opts = vjax.ContactOptions(krylov_tol=1e-13, krylov=200)

@@ -21,8 +21,8 @@ BiCGSTAB with FFT matrix-vector products preconditioned by the restriction of th
 circulant inverse M^-1 (converges in 5-10 Krylov steps independently of N and of
 the size of the contact), then updates A. No dense N x N matrix is formed: each step
 costs O(N log N) per Krylov iteration. M_AA and its preconditioner depend only on offsets
-within A, so when A spans at most a sixteenth (an eighth) of the ring, the Krylov solve
-runs on a window of N/8 (N/4) elements instead, with FFTs that much shorter.
+within A, so when A spans at most an eighth of the ring, the Krylov solve runs on a window
+of N/4 elements instead, with FFTs a quarter as long.
 
 **Derivatives**: implicit, at the solution (:func:`vjax._solve.implicit_root`): the tangent
 solves the same linearized system with the active set frozen, matrix-free by the bordered
@@ -36,7 +36,6 @@ to the peak pressure, plus the relative force misfit) and ``converged``.
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
 from typing import NamedTuple
 
 import jax
@@ -80,6 +79,10 @@ class ContactOptions:
     krylov_method: "bicgstab" (default, about 2x faster) or "gmres" (restarted, never
     breaks down: used when the operator is indefinite, e.g. a hole whose log-R reference
     length makes the rigid-body mode 1 compliance negative; see :func:`solve_with_fallback`).
+    window: solve a contact set that spans at most an eighth of the ring on a window of a
+    quarter of it (FFTs a quarter as long; same iterates): 2.7x faster inner solves for one
+    short patch (a pin, Hertz); it costs compile time where it never applies, as on a roller
+    bearing's rings with patches all round (the roller scene's default turns it off).
     """
 
     tol: float = 1e-10
@@ -88,6 +91,7 @@ class ContactOptions:
     krylov_tol: float = 1e-12
     krylov_tol_step: float = 1e-8
     krylov_method: str = "bicgstab"
+    window: bool = True
 
     def __post_init__(self):
         _checks.option_number("tol", self.tol)
@@ -96,6 +100,8 @@ class ContactOptions:
         _checks.option_count("max_iter", self.max_iter)
         _checks.option_count("krylov", self.krylov)
         _checks.one_of("krylov_method", self.krylov_method, ("bicgstab", "gmres"))
+        if not isinstance(self.window, bool):
+            raise ValueError(f"window must be True or False, got {self.window!r}")
 
 
 def _transpose(op: RingOperator) -> RingOperator:
@@ -132,18 +138,18 @@ def _krylov_restricted(op, inv, active, rhs, opts):
     return x, jnp.max(rel)
 
 
-# A contact arc much shorter than the ring is solved on a window of the ring (fractions of n,
-# smallest first) instead of the whole ring; rings below _WINDOW_MIN_N always use the whole.
-_WINDOW_FRACTIONS = (8, 4)
+# A contact arc of at most n/8 elements is solved on a window of n/4 elements of the ring
+# instead of the whole ring; rings below _WINDOW_MIN_N always use the whole.
+_WINDOW_FRACTION = 4
 _WINDOW_MIN_N = 256
 
 
 class _System(NamedTuple):
-    """M, its circulant inverse (the preconditioner), and both on windows of the ring."""
+    """M, its circulant inverse (the preconditioner), and both on a window of the ring."""
 
     op: RingOperator
     inv: RingOperator
-    windows: tuple     # (M, M^-1) on n // f elements for f in _WINDOW_FRACTIONS, or ()
+    window: tuple     # (M, M^-1) on n / _WINDOW_FRACTION elements, or () (off, or below _WINDOW_MIN_N)
 
 
 def _window(op: RingOperator, size: int) -> RingOperator:
@@ -154,14 +160,14 @@ def _window(op: RingOperator, size: int) -> RingOperator:
     return RingOperator(jnp.fft.rfft(op.kernel[offsets % op.n]), size)
 
 
-def _system(op: RingOperator) -> _System:
+def _system(op: RingOperator, window: bool) -> _System:
     inv = _inverse(op)
-    fractions = _WINDOW_FRACTIONS if op.n >= _WINDOW_MIN_N else ()
-    return _System(op, inv, tuple((_window(op, op.n // f), _window(inv, op.n // f)) for f in fractions))
+    size = op.n // _WINDOW_FRACTION
+    return _System(op, inv, (_window(op, size), _window(inv, size)) if window and op.n >= _WINDOW_MIN_N else ())
 
 
 def _transposed(system: _System) -> _System:
-    return _System(*map(_transpose, system[:2]), tuple(tuple(map(_transpose, w)) for w in system.windows))
+    return _System(*map(_transpose, system[:2]), tuple(map(_transpose, system.window)))
 
 
 def _arc(active):
@@ -182,39 +188,34 @@ def _restricted_solve(system: _System, active, rhs, opts):
     """Solve M_AA x_A = rhs_A (x = 0 off A) for one or several right-hand sides (last axis N).
 
     M_AA and its preconditioner, the restriction of the circulant inverse, depend only on
-    offsets within A: when A fits in half a window of the ring, the same Krylov iteration
-    runs on the window, with FFTs that much shorter (the thesis pin's arc is 7% of the ring:
-    3.5x faster at n = 4096). Returns the solutions and the largest relative residual."""
-    if not system.windows:
-        return _krylov_restricted(system.op, system.inv, active, rhs, opts)
+    offsets within A: when A fits in half the window, the same Krylov iteration runs on the
+    window, with FFTs a quarter as long (the thesis pin's arc is 7% of the ring: 2.7x faster
+    at n = 4096). Returns the solutions and the largest relative residual."""
+    whole = lambda system, active, rhs, start: _krylov_restricted(system.op, system.inv, active, rhs, opts)
+    if not system.window:
+        return whole(system, active, rhs, None)
     n = system.op.n
     start, length = _arc(active)
-    # the smallest window that holds the arc twice; len(windows): the whole ring
-    smallest = sum((length > op_w.n // 2).astype(int) for op_w, _ in system.windows)
 
-    def solve_on(i, start, system, active, rhs):
-        if i == len(system.windows):
-            return _krylov_restricted(system.op, system.inv, active, rhs, opts)
-        op_w, inv_w = system.windows[i]
+    def on_window(system, active, rhs, start):
+        op_w, inv_w = system.window
         idx = (start + jnp.arange(op_w.n)) % n
         x, rel = _krylov_restricted(op_w, inv_w, active[idx], rhs[..., idx], opts)
         return jnp.zeros_like(rhs).at[..., idx].set(x), rel
 
-    choices = range(len(system.windows) + 1)
-
     @jax.custom_batching.custom_vmap
-    def solve(branch, *args):
-        return jax.lax.switch(branch, [partial(solve_on, i) for i in choices], *args)
+    def solve(fits, *args):
+        return jax.lax.cond(fits, on_window, whole, *args)
 
     @solve.def_vmap
-    def solve_batch(axis_size, in_batched, branch, *args):
-        # One window for the whole batch, the one that fits every member: a batched
-        # lax.switch would run every branch (the whole ring's included) for every member.
+    def solve_batch(axis_size, in_batched, fits, *args):
+        # The window only when it fits every member of the batch: a batched lax.cond would
+        # run both branches for every member.
         axes = jax.tree.map(lambda b: 0 if b else None, list(in_batched[1:]))
-        run = [jax.vmap(partial(solve_on, i), in_axes=axes) for i in choices]
-        return jax.lax.switch(jnp.max(branch), run, *args), (True, True)
+        out = jax.lax.cond(jnp.all(fits), jax.vmap(on_window, in_axes=axes), jax.vmap(whole, in_axes=axes), *args)
+        return out, (True, True)
 
-    return solve(smallest, start, system, active, rhs)
+    return solve(length <= system.window[0].n // 2, system, active, rhs, start)
 
 
 def _bordered_solve(system, active, J, W, b_sigma, b_q, opts):
@@ -273,7 +274,7 @@ def _force_and_rows(force, op, args, sigma, u):
 def _solve_forward(op, interference, force, args, q0, F, opts, sigma_init):
     """Primal-dual active-set iteration with Newton on q: (sigma, q), (active set, Stats)."""
     step_opts = dataclasses.replace(opts, krylov_tol=opts.krylov_tol_step)
-    system = _system(op)
+    system = _system(op, opts.window)
     c = _scale(op)
     k = q0.shape[0]
     d_of = lambda q: interference(q, args)
@@ -352,7 +353,7 @@ def _solve_implicit(op, interference, force, args, q0, F, opts, sigma_init):
             W = _force_and_rows(force, op_, args_, sigma, op_(sigma))[1]
         else:
             J, W = jnp.zeros((n, 0), sigma.dtype), jnp.zeros((0, n), sigma.dtype)
-        system = _system(op_)
+        system = _system(op_, opts.window)
         forward = lambda b: jnp.concatenate(_bordered_solve(system, act, J, W, b[:n], b[n:], opts)[:2])
         transpose = lambda b: jnp.concatenate(_bordered_transpose_solve(system, act, J, W, b[:n], b[n:], opts))
         return forward, transpose

@@ -41,7 +41,10 @@ hole and the cylinder, and only the mean (n = 0) of the half-plane.
 """
 from __future__ import annotations
 
+import functools
+
 import jax.numpy as jnp
+import numpy as np
 
 KINDS = ("hole", "cylinder", "diametral", "half_plane")
 
@@ -49,15 +52,15 @@ KINDS = ("hole", "cylinder", "diametral", "half_plane")
 _PERIOD_INTEGRALS = (0.0, -jnp.pi, -jnp.pi, 2.0 * jnp.pi)
 
 
-def _wrap(phi):
+def _wrap(phi, xp=jnp):
     """Angle to [-pi, pi)."""
-    return phi - 2.0 * jnp.pi * jnp.floor((phi + jnp.pi) / (2.0 * jnp.pi))
+    return phi - 2.0 * np.pi * xp.floor((phi + np.pi) / (2.0 * np.pi))
 
 
-def _safe_log(x):
+def _safe_log(x, xp=jnp):
     """log(x) for x > 0 and 0 where x == 0, with finite gradients ("double where")."""
     ok = x > 0
-    return jnp.where(ok, jnp.log(jnp.where(ok, x, 1.0)), 0.0)
+    return xp.where(ok, xp.log(xp.where(ok, x, 1.0)), 0.0)
 
 
 def _basis(theta):
@@ -68,20 +71,36 @@ def _basis(theta):
     return (jnp.cos(t), beta * jnp.cos(t), saw * jnp.sin(t), jnp.ones_like(t))
 
 
-def _primitives(phi):
+def _primitives(phi, xp=jnp):
     """Antiderivatives of the basis functions, continuous on the real line.
 
     On [-pi, pi): integral cos = sin; integral beta cos = sin beta - phi/2 - sin/2 (by
     parts, sin * beta' = cos^2(phi/2)); integral A sin = -A cos + sin/2 - s pi/2 (the
-    -s pi/2 removes the jump of A at 0). Outside, add whole periods.
+    -s pi/2 removes the jump of A at 0). Outside, add whole periods. ``xp``: jax.numpy, or
+    numpy for the geometry-only tables of :func:`element_basis_symbols`.
     """
-    t = _wrap(phi)
-    periods = jnp.round((phi - t) / (2.0 * jnp.pi))
-    s, c, sgn = jnp.sin(t), jnp.cos(t), jnp.sign(t)
-    sin_beta = s * _safe_log(2.0 * jnp.abs(jnp.sin(t / 2)))  # x log x -> 0 at t = 0
-    saw = t / 2 - jnp.pi / 2 * sgn
-    local = (s, sin_beta - t / 2 - s / 2, -saw * c + s / 2 - sgn * jnp.pi / 2, t)
+    t = _wrap(phi, xp)
+    periods = xp.round((phi - t) / (2.0 * np.pi))
+    s, c, sgn = xp.sin(t), xp.cos(t), xp.sign(t)
+    sin_beta = s * _safe_log(2.0 * xp.abs(xp.sin(t / 2)), xp)  # x log x -> 0 at t = 0
+    saw = t / 2 - np.pi / 2 * sgn
+    local = (s, sin_beta - t / 2 - s / 2, -saw * c + s / 2 - sgn * np.pi / 2, t)
     return tuple(p + periods * w for p, w in zip(local, _PERIOD_INTEGRALS))
+
+
+@functools.lru_cache(maxsize=32)
+def element_basis_symbols(n: int, pair: bool = False) -> np.ndarray:
+    """(4, n // 2 + 1): the real FFT, over a grid of n elements, of the element integrals of
+    the basis [cos, beta cos, A sin, 1] (of a pair of loads at 0 and pi when ``pair``, the
+    diametral case). Geometry only, so computed once per n, in float64 numpy: an element
+    symbol is their combination with the weights of R, nu and ref_length (A.45, A.60, A.69),
+    with no transcendental function or FFT at n points per call."""
+    theta, alpha = 2.0 * np.pi * np.arange(n) / n, np.pi / n
+    kernels = 0.0
+    for shift in ((0.0, np.pi) if pair else (0.0,)):
+        hi, lo = _primitives(theta - shift + alpha, np), _primitives(theta - shift - alpha, np)
+        kernels = kernels + np.stack([h - l for h, l in zip(hi, lo)])
+    return np.fft.rfft(kernels, axis=-1).real
 
 
 def _coefficients(kind, R, nu, ref_length):

@@ -90,6 +90,10 @@ def element_symbol(kind: str, n: int, R, nu, ref_length=1.0, thickness=None):
     """
     if kind in green.LAYERS:
         return green.layer_element_symbol(kind, n, R, nu, thickness)
+    green._check_kind(kind)
+    if kind != "half_plane":
+        weights = green._coefficients("cylinder" if kind == "diametral" else kind, R, nu, ref_length)
+        return sum(w * b for w, b in zip(weights, green.element_basis_symbols(n, kind == "diametral")))
     theta, alpha = grid(n)
     return jnp.fft.rfft(green.element_kernel(kind, theta, alpha, R, nu, ref_length)).real
 

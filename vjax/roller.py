@@ -85,7 +85,7 @@ class RollerOptions:
     n: int = 1024
     tol: float = 1e-10
     max_iter: int = 40
-    contact: ContactOptions = ContactOptions()
+    contact: ContactOptions = ContactOptions(window=False)   # patches all round the rings
 
     def __post_init__(self):
         _checks.option_count("n", self.n, 16)
