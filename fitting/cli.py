@@ -86,7 +86,6 @@ def main(argv=None) -> int:
     import jax
     jax.config.update("jax_enable_x64", True)
     jax_cache.enable(args.no_cache)
-    from . import io, plots
     from .calibration import calibrate
 
     out, code = output_json("vjax-fit", args.out)
@@ -101,7 +100,7 @@ def main(argv=None) -> int:
         rep.save(out, mat, shift, kind, inputs=list(args.inputs))
         written = [out]
         if not args.no_plots:
-            from . import dma, relaxation
+            from . import dma, plots, relaxation
             reader = relaxation if rep.domain == "time" else dma
             table = reader.read(args.inputs, kind=args.kind, drop_nonpositive=args.drop_nonpositive)
             stem = os.path.splitext(out)[0]
