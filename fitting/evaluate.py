@@ -9,7 +9,8 @@ persistent compilation cache of the command-line tools skips only XLA's compilat
 The formulas are those of :class:`vjax.material.Material` (Prony series), :class:`~vjax.material.WLF`,
 :class:`~vjax.material.Arrhenius` and :class:`fitting.master.ShiftTable` (the table's
 interpolation written as :func:`jax.numpy.interp` computes it); any other law is evaluated
-through one jitted function.
+through one jitted function. Importing this module does not import vjax or JAX (so that
+:mod:`fitting.plots` does not either; see :mod:`fitting`).
 """
 from __future__ import annotations
 
@@ -17,8 +18,6 @@ import functools
 import math
 
 import numpy as np
-
-from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
 
 __all__ = ["log10_aT", "modulus", "loss", "relaxation"]
 
@@ -48,6 +47,8 @@ def _jitted(method):
 def log10_aT(law, T) -> np.ndarray:
     """log10 a_T of the shift law ``law`` at the temperatures ``T`` (C), a float array. A WLF
     law refuses temperatures at or below its asymptote, as its own method does."""
+    from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
+
     from .master import ShiftTable
     T = _float(T)
     if isinstance(law, ShiftTable):
