@@ -8,7 +8,7 @@ plots written):
 * ``vjax-fit`` with a fresh, empty cache directory (first call: every function compiled and
   stored), then again with the same cache (second call), ``repeats`` times each, each time
   with a new empty cache for the first call;
-* the second call again with ``--no-plots`` (the six PNGs cost seconds of matplotlib);
+* the second call again with ``--no-plots`` (the six PNGs: matplotlib's import and drawing);
 * ``vjax-fit --no-cache`` (the behaviour before the cache);
 * pyvisco's default pipeline on the same data (:func:`experiments.dma_fit.run_pyvisco`), in
   this process, when pyvisco is installed.

@@ -29,7 +29,7 @@ import numpy as np
 from vjax import _checks
 from vjax.material import Material
 
-from . import dma, io, master, plots, prony, relaxation, spectrum
+from . import dma, evaluate, io, master, prony, relaxation, spectrum
 
 __all__ = ["calibrate", "Report"]
 
@@ -140,7 +140,7 @@ def convert_modulus(material: Material, factor) -> Material:
 def _free_fits(table, start, nu, densities, max_iter):
     """The earlier method: free relaxation times, the number of terms by BIC after refinement
     (few terms, but the loss modulus may ring). Returns ({law: PronyFit}, criterion)."""
-    wr = table.omega * 10.0 ** np.asarray(start.log10_aT(table.T))
+    wr = table.omega * 10.0 ** evaluate.log10_aT(start, table.T)
     # one NNLS start per density, each refined end-to-end (table law); the number of terms is
     # chosen by BIC after the refinement (not on the linear master-curve fit, whose times are
     # frozen on a grid and which therefore asks for more terms)
@@ -203,7 +203,7 @@ def _smooth_fits(table, start, nu, per_decade, max_terms):
 
 def _law_distance(law, table_law, temperatures) -> dict:
     """rms and max |log10 a_T(law) - log10 a_T(table)| over the measured temperatures (decades)."""
-    d = np.asarray(spectrum._log10_aT(law, temperatures)) - np.asarray(spectrum._log10_aT(table_law, temperatures))
+    d = evaluate.log10_aT(law, temperatures) - evaluate.log10_aT(table_law, temperatures)
     return {"rms": float(np.sqrt(np.mean(d ** 2))), "max": float(np.max(np.abs(d)))}
 
 
@@ -276,7 +276,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     mat, shift = fit.material, fit.shift
     errors = table.errors(mat, shift)
     rate = table.omega if table.domain == "frequency" else 1.0 / table.t
-    wr = rate * 10.0 ** np.asarray(spectrum._log10_aT(shift, table.T))
+    wr = rate * 10.0 ** evaluate.log10_aT(shift, table.T)
     errors["loss_extrema"] = spectrum.loss_extrema(mat, float(wr.min()), float(wr.max()))
     alternatives = {}
     for name in CLOSED_FORM:
@@ -308,6 +308,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         report.save(jpath, mat, shift, out_kind, files=list(table.files))
         report.outputs.append(jpath)
         if plots_:
+            from . import plots     # matplotlib only when plotting
             # plots show the data in their own modulus, hence the fitted (unconverted) material
             report.outputs += plots.save_all(out_dir, stem, table, fit.material, shift, fits["table"].shift,
                                              report.laws)

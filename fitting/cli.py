@@ -16,6 +16,7 @@ Compiled functions are kept in a persistent cache (:mod:`fitting.jax_cache`; ``-
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import sys
 
@@ -83,15 +84,25 @@ def main(argv=None) -> int:
         p.print_usage(sys.stderr)
         print(f"vjax-fit: error: {problem}", file=sys.stderr)
         return 2
-    import jax
-    jax.config.update("jax_enable_x64", True)
-    jax_cache.enable(args.no_cache)
-    from . import io, plots
-    from .calibration import calibrate
-
     out, code = output_json("vjax-fit", args.out)
     if code:
         return code
+    # the fit's numpy linear algebra works on matrices of a few hundred rows, where OpenBLAS's
+    # threads only contend with XLA's (seconds lost on a busy two-core machine); this takes
+    # effect when numpy is not loaded yet, i.e. from the command line
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    import jax
+    jax.config.update("jax_enable_x64", True)
+    jax_cache.enable(args.no_cache)
+    from .calibration import calibrate
+    if not args.no_plots:
+        from . import plots     # matplotlib, before the freeze below
+    # everything loaded so far (JAX, vjax, numpy, matplotlib) lives as long as the process:
+    # exempt it from the cyclic garbage collector, whose full collections, triggered by the
+    # many objects that tracing and drawing allocate, would walk it again and again (about
+    # 0.3 s of a cached call)
+    gc.freeze()
+
     try:
         mat, shift, rep = calibrate(args.inputs, args.tref, None, law=args.law, nu=args.nu, kind=args.kind,
                                     tensile=not args.shear, shifts=args.shifts,

@@ -35,6 +35,7 @@ import numpy as np
 from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
 
 from .dma import DMATable, DMAFormatError
+from .evaluate import _table_log10_aT
 
 __all__ = ["ShiftTable", "shift_factors", "fit_wlf", "fit_arrhenius", "fit_law", "read_shift_file",
            "pair_shift"]
@@ -77,8 +78,7 @@ class ShiftTable:
         T, y = T[order], y[order]
         if np.any(np.diff(T) == 0):
             raise ValueError(f"shift table has repeated temperatures: {T[np.flatnonzero(np.diff(T) == 0)]}")
-        tab = cls(jnp.asarray(T), jnp.asarray(y), jnp.asarray(float(T_ref)))
-        off = float(tab.log10_aT(float(T_ref)))
+        off = float(_table_log10_aT(T, y, np.float64(T_ref)))     # numpy: no JAX dispatch
         return cls(jnp.asarray(T), jnp.asarray(y - off), jnp.asarray(float(T_ref)))
 
 

@@ -47,7 +47,7 @@ import numpy as np
 
 from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, Material, WLF
 
-from . import _optim
+from . import _optim, evaluate
 from .dma import DMATable
 from .master import ShiftTable
 
@@ -177,7 +177,7 @@ def _law_spec(shift, T_sets, T_ref, T_min):
             return {"Ea": float(np.exp(p[0]) * math.sqrt(max(cov[0, 0], 0)))}
         return _ARR, p0, physical, sig, 0.0
     if isinstance(shift, ShiftTable):
-        p0 = np.asarray(shift.log10_aT(np.asarray(T_sets)), float)
+        p0 = evaluate.log10_aT(shift, T_sets)
         Tsn = np.asarray(T_sets, float)
 
         def physical(p):
@@ -279,8 +279,10 @@ def _log_residual(material, shift, T, omega, storage, loss):
 
 def raw_errors(material: Material, shift, table: DMATable) -> dict:
     """Errors on the raw unshifted points: median and 90th percentile of |log10(pred/meas)|
-    for storage and loss separately, plus rms of all log10 residuals."""
-    r = np.asarray(log_residual(material, shift, table))
+    for storage and loss separately, plus rms of all log10 residuals (evaluated in numpy,
+    :mod:`fitting.evaluate`; :func:`log_residual` is the JAX version for derivatives)."""
+    E = evaluate.modulus(material, table.omega * 10.0 ** evaluate.log10_aT(shift, table.T))
+    r = np.concatenate([np.log10(E.real / table.storage), np.log10(E.imag / table.loss)])
     n = len(table)
     rs, rl = np.abs(r[:n]), np.abs(r[n:])
     return {"storage_median": float(np.median(rs)), "storage_p90": float(np.percentile(rs, 90)),
@@ -335,7 +337,7 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     x0 = np.concatenate([[math.log(E0 / scale)], lEk, ltau, plaw])
     active = np.concatenate([[1.0], np.arange(Kp) < K, np.arange(Kp) < K, np.arange(nlp) < nl]).astype(float)
     # reduced-frequency range of the data under the starting shift law
-    wr = np.asarray(table.omega) * 10.0 ** np.asarray(shift.log10_aT(jnp.asarray(table.T)))
+    wr = np.asarray(table.omega) * 10.0 ** evaluate.log10_aT(shift, table.T)
     lt_lo = -math.log(wr.max()) - tau_margin * LN10
     lt_hi = -math.log(wr.min()) + tau_margin * LN10
     data = (jnp.asarray(table.omega), jnp.asarray(table.set), jnp.log10(jnp.asarray(table.storage) / scale),

@@ -20,10 +20,9 @@ import math
 import os
 import re
 
-import jax
 import numpy as np
 
-from . import dma
+from . import dma, evaluate
 from .dma import DMAFormatError
 
 __all__ = ["RelaxationTable", "read", "is_relaxation"]
@@ -77,16 +76,10 @@ class RelaxationTable:
 
     def errors(self, material, shift) -> dict:
         """Median and 90th percentile of |log10(pred/meas)| of E(t) on the raw points, and the rms."""
-        r = np.log10(np.asarray(_relaxation(material, shift, self.t, self.T)) / self.modulus)
+        r = np.log10(evaluate.relaxation(material, self.t / 10.0 ** evaluate.log10_aT(shift, self.T)) / self.modulus)
         a = np.abs(r)
         return {"relaxation_median": float(np.median(a)), "relaxation_p90": float(np.percentile(a, 90)),
                 "rms": float(np.sqrt(np.mean(r ** 2)))}
-
-
-@jax.jit
-def _relaxation(material, shift, t, T):
-    """E(t / a_T(T)) (Pa), one compiled function for every call."""
-    return material.relaxation(t / 10.0 ** shift.log10_aT(T))
 
 
 def _header_names(path):

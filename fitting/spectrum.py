@@ -45,7 +45,7 @@ import numpy as np
 
 from vjax.material import Material
 
-from . import _optim
+from . import _optim, evaluate
 from .dma import set_temperatures
 from .prony import LN10, PronyFit, _law_eval, _law_spec, _robust
 
@@ -53,16 +53,6 @@ __all__ = ["count_extrema", "loss_extrema", "SmoothData", "smooth_fit", "LAMBDAS
 
 LAMBDAS = tuple(10.0 ** np.arange(3.0, -6.01, -1.0))
 _SAMPLES = 4096      # loss-modulus samples of loss_extrema: >= 100 per decade over 40 decades
-
-
-@jax.jit
-def _loss_curve(material, log10_w):
-    return material.modulus(10.0 ** log10_w).imag
-
-
-@jax.jit
-def _log10_aT(law, T):
-    return law.log10_aT(T)
 
 
 def count_extrema(y) -> int:
@@ -81,7 +71,7 @@ def loss_extrema(material: Material, omega_min: float, omega_max: float) -> int:
         raise ValueError(f"need 0 < omega_min < omega_max, got {omega_min!r}, {omega_max!r}")
     decades = math.log10(omega_max / omega_min)
     n = _SAMPLES if decades <= 40 else int(100 * decades) + 1
-    return count_extrema(np.asarray(_loss_curve(material, np.linspace(math.log10(omega_min), math.log10(omega_max), n))))
+    return count_extrema(evaluate.loss(material, 10.0 ** np.linspace(math.log10(omega_min), math.log10(omega_max), n)))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -214,7 +204,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     kind, p_law0, physical, sig, c2min = _law_spec(shift, Tsets, T_ref, float(Tsets.min()))
     u = data.log_rate()
     scale = float(np.median(data.y1))
-    ur = u + LN10 * np.asarray(_log10_aT(shift, data.T))     # ln reduced rate
+    ur = u + LN10 * evaluate.log10_aT(shift, data.T)     # ln reduced rate
     if grid is None:
         grid = _grid(-ur.max() / LN10 - margin, -ur.min() / LN10 + margin, per_decade, max_terms)
     grid = np.asarray(grid, float)
@@ -226,10 +216,12 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     pad = lambda a, v=0.0: np.concatenate([np.asarray(a, float), np.full(npad - n, v)])  # noqa: E731
     two = 1.0 if data.domain == "frequency" else 0.0
     ltau = np.concatenate([grid, np.full(Kp - K, grid[-1])]) * LN10
-    base = (jnp.asarray(pad(u)), jnp.asarray(np.concatenate([data.set, np.zeros(npad - n, int)])),
-            jnp.asarray(pad(np.log10(data.y1 / scale))), jnp.asarray(pad(np.log10(data.y2 / scale))),
-            jnp.asarray(pad(np.full(n, weights[0]))), jnp.asarray(pad(np.full(n, weights[1] * two))),
-            jnp.asarray(Tsets, float), jnp.asarray(T_ref), jnp.asarray(c2min), jnp.asarray(ltau), jnp.asarray(kind))
+    # numpy arrays and Python scalars go to the jitted solver as they are: jnp.asarray would
+    # compile a transfer per shape in every process
+    base = (pad(u), np.concatenate([data.set, np.zeros(npad - n, int)]),
+            pad(np.log10(data.y1 / scale)), pad(np.log10(data.y2 / scale)),
+            pad(np.full(n, weights[0])), pad(np.full(n, weights[1] * two)),
+            np.asarray(Tsets, float), float(T_ref), float(c2min), ltau, int(kind))
     # start: the log-linear interpolation of the data's storage (relaxation) modulus drop
     if start is None:
         E0 = max(float(np.min(data.y1)) * 0.9, 1e-6 * scale)
@@ -251,7 +243,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         D[i, 1 + i:4 + i] = (1.0, -2.0, 1.0)
 
     def run(lam_, x0):
-        sol = _solve(jnp.asarray(x0), jnp.asarray(active), base + (jnp.asarray(math.sqrt(lam_)),),
+        sol = _solve(x0, active, base + (math.sqrt(lam_),),
                      domain=data.domain, K=Kp, max_iter=int(max_iter), ftol=float(ftol),
                      robust=float(robust))
         xs = np.asarray(sol.x)
@@ -263,7 +255,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         m = len(live)
         mat = _material(xs, K, scale, grid, nu)
         # extrema over the reduced range of the data under the fitted law
-        wr = np.exp(u + LN10 * np.asarray(_log10_aT(physical(xs[Kp + 1:Kp + 1 + len(p_law0)]), data.T)))
+        wr = np.exp(u + LN10 * evaluate.log10_aT(physical(xs[Kp + 1:Kp + 1 + len(p_law0)]), data.T))
         return xs, sol, dict(lam=lam_, gcv=m * rss / max(m - edf, 1.0) ** 2, edf=edf, rms=math.sqrt(rss / m),
                              extrema=loss_extrema(mat, wr.min(), wr.max()),
                              x=xs, iterations=int(sol.iterations), converged=bool(sol.converged), J=J, r=r)

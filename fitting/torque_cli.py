@@ -116,7 +116,7 @@ def main(argv=None) -> int:
     import numpy as np
     from vjax.material import WLF
 
-    from . import io, plots
+    from . import io
     from . import torque as ft
 
     written = []
@@ -144,6 +144,7 @@ def main(argv=None) -> int:
         rows = [[name, before, after, s, "yes" if fit.ident["sd"][name] < 0.1 else "no"]
                 for name, before, after, s in fit.table()]
         if not args.no_plots:
+            from . import plots
             sigma = data.sigma(args.rel_scatter)
             written.append(plots.torque_fit(data, {"fit": fit}, sigma, stem + "_torque.png"))
             written.append(plots.moduli([(material, "start", "k:"), (fit.material, "fitted", "C2-")],
