@@ -59,12 +59,12 @@ def test_failure_path_inside_and_outside_jit(name):
 
 
 def test_under_vmap_one_failed_point_raises_for_the_batch():
-    """The design load converges in 6 active-set steps, 50 times it needs more."""
-    loads = jnp.array([2800.0, 50 * 2800.0])
-    ok = jax.vmap(lambda f: pin(f, throw=False, max_iter=6).converged)(loads)
+    """A tenth of the design load converges in 3 active-set steps, 200 times it needs 7."""
+    loads = jnp.array([280.0, 200 * 2800.0])
+    ok = jax.vmap(lambda f: pin(f, throw=False, max_iter=5).converged)(loads)
     assert list(np.asarray(ok)) == [True, False]
     with pytest.raises(Exception, match="pin_in_hole did not converge"):
-        jax.vmap(lambda f: pin(f, max_iter=6).torque)(loads).block_until_ready()
+        jax.vmap(lambda f: pin(f, max_iter=5).torque)(loads).block_until_ready()
 
 
 def test_every_scene_warm_starts_from_a_previous_result():
