@@ -92,6 +92,13 @@ def pin_shaft_speed(patch_speed, R, radial_clearance, omega_housing=0.0):
     return omega_housing - patch_speed * radial_clearance / (R - radial_clearance)
 
 
+def _prolong(values, factor: int):
+    """Periodic linear interpolation from a grid of elements to one ``factor`` times finer
+    (both with an element centre at theta = 0)."""
+    w = jnp.arange(factor) / factor
+    return ((1 - w) * values[:, None] + w * jnp.roll(values, -1)[:, None]).reshape(-1)
+
+
 def _pin_interference(q, args):
     R, R_pin, theta = args
     e = q[0]
@@ -198,9 +205,7 @@ def _pin_in_hole(housing: Body, R, c, load, load_angle, omega, start, memory, op
             return e0, bump * (load / _pin_force(bump, jnp.zeros_like(bump), (R, R_pin, theta))[0])
         e0c, sigma_c = nested(n_ // 8, e0)
         coarse = solve(n_ // 8, e0c, sigma_c, tol=max(options.tol, 1e-6))
-        theta_c, theta_f = grid(n_ // 8)[0], grid(n_)[0]
-        return (jnp.where(coarse.converged, coarse.q, e0),
-                jnp.interp(theta_f, theta_c, coarse.pressure, period=2 * jnp.pi))
+        return jnp.where(coarse.converged, coarse.q, e0), _prolong(coarse.pressure, 8)
 
     if start is not None:
         e0, sigma_init = jnp.atleast_1d(start[0]), start[1]
