@@ -208,12 +208,24 @@ def _restricted_solve(system: _System, active, rhs, opts):
         return jax.lax.cond(fits, on_window, whole, *args)
 
     @solve.def_vmap
-    def solve_batch(axis_size, in_batched, fits, *args):
-        # The window only when it fits every member of the batch: a batched lax.cond would
-        # run both branches for every member.
-        axes = jax.tree.map(lambda b: 0 if b else None, list(in_batched[1:]))
-        out = jax.lax.cond(jnp.all(fits), jax.vmap(on_window, in_axes=axes), jax.vmap(whole, in_axes=axes), *args)
-        return out, (True, True)
+    def solve_batch(axis_size, in_batched, fits, system, active, rhs, start):
+        # Each member takes the path it would take alone, so its result does not depend on
+        # the batch; a path runs only if some member needs it, and the other members give it
+        # an empty set (a trivial solve). A batched lax.cond would run both for every member.
+        sys_b, act_b, rhs_b, start_b = in_batched[1:]
+        fits = jnp.broadcast_to(fits, (axis_size,))
+        active = active if act_b else jnp.broadcast_to(active, (axis_size,) + active.shape)
+        axes = jax.tree.map(lambda b: 0 if b else None, [sys_b, True, rhs_b, start_b])
+        x_shape = (axis_size,) + (rhs.shape[1:] if rhs_b else rhs.shape)
+
+        def path(solver, members):
+            run = lambda: jax.vmap(solver, in_axes=axes)(system, active & members[:, None], rhs, start)
+            skip = lambda: (jnp.zeros(x_shape, rhs.dtype), jnp.zeros(axis_size, rhs.dtype))
+            return jax.lax.cond(jnp.any(members), run, skip)
+
+        (x_w, rel_w), (x_f, rel_f) = path(on_window, fits), path(whole, ~fits)
+        pick = lambda a, b: jnp.where(fits.reshape((-1,) + (1,) * (a.ndim - 1)), a, b)
+        return (pick(x_w, x_f), pick(rel_w, rel_f)), (True, True)
 
     return solve(length <= system.window[0].n // 2, system, active, rhs, start)
 
