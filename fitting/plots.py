@@ -75,10 +75,14 @@ def _save(fig, path):
     if path is None:
         return fig
     for ax in fig.axes:
-        for axis in (ax.xaxis, ax.yaxis):
+        for axis, lim in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
             if axis.get_scale() == "log":
                 axis.set_major_formatter(_PlainLogFormatter(10.0))
                 axis.set_minor_formatter(_PlainLogFormatter(10.0, labelOnlyBase=False))
+                if max(lim) > 1e3 * min(lim):
+                    # unlabelled minor ticks over many decades: clutter, and most of the
+                    # drawing time (matplotlib builds every tick as several artists)
+                    axis.set_minor_locator(ticker.NullLocator())
     files.save_figure(fig, path, dpi=110)
     return os.fspath(path)
 
