@@ -101,6 +101,7 @@ def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: f
         jac = jax.jacfwd(lambda x: fun(x, *args))
         resid_jac = lambda x: (fun(x, *args), jac(x))  # noqa: E731
 
+    @jax.jit     # one trace and one lowering for its two call sites (the start and the loop body)
     def lin(x):
         r, J = resid_jac(x)
         return r, J, 0.5 * jnp.sum(r * r)

@@ -102,6 +102,11 @@ def pair_shift(a, b, max_shift=12.0, step=0.01, min_overlap=0.2, loss_weight=1.0
     xb, sb, lb = b
     d = np.arange(-max_shift, max_shift + step / 2, step)
     width = min(xa[-1] - xa[0], xb[-1] - xb[0])
+    # only shifts with enough overlap can score (elsewhere the mismatch is inf): evaluate those
+    # (an interval) and one grid point either side, which the parabola below looks at
+    feasible = np.flatnonzero(np.minimum(xa[-1], xb[-1] + d) - np.maximum(xa[0], xb[0] + d) >= min_overlap * width)
+    if feasible.size:
+        d = d[max(feasible[0] - 1, 0):feasible[-1] + 2]
 
     def mismatch(d):
         xs = xb[None, :] + d[:, None]                       # b shifted, shape (G, nb)

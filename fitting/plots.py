@@ -79,11 +79,13 @@ def _save(fig, path):
             if axis.get_scale() == "log":
                 axis.set_major_formatter(_PlainLogFormatter(10.0))
                 axis.set_minor_formatter(_PlainLogFormatter(10.0, labelOnlyBase=False))
-                if max(lim) > 1e3 * min(lim):
-                    # unlabelled minor ticks over many decades: clutter, and most of the
-                    # drawing time (matplotlib builds every tick as several artists)
-                    axis.set_minor_locator(ticker.NullLocator())
-    files.save_figure(fig, path, dpi=110)
+                # minor ticks at 2 and 5 per decade, none over more than three decades
+                # (unlabelled clutter there): matplotlib builds every tick as five artists,
+                # and ticks were most of the drawing time
+                axis.set_minor_locator(ticker.NullLocator() if max(lim) > 1e3 * min(lim)
+                                       else ticker.LogLocator(10.0, subs=(2.0, 5.0)))
+    # zlib level 1: a third of the encoding time of the default 6, files about 8% larger
+    files.save_figure(fig, path, dpi=110, pil_kwargs={"compress_level": 1})
     return os.fspath(path)
 
 

@@ -190,21 +190,35 @@ def _law_spec(shift, T_sets, T_ref, T_min):
 
 
 def _law_eval(kind, p, Ts, T_ref, c2min):
-    """log10 a_T per set for the unconstrained law parameters ``p`` (padded vector). ``kind``
-    (_WLF, _ARR or _TAB) may be traced: then one compiled function serves all three laws."""
+    """log10 a_T per set and its Jacobian with respect to the unconstrained law parameters
+    ``p`` (padded vector): ``(L (sets,), dL/dp (sets, len(p)))``, the derivatives written out
+    (forward-mode differentiation through a switch of three laws was half of the fit's
+    tracing time). ``Ts``: the sets' temperatures, increasing. ``kind`` (_WLF, _ARR or _TAB)
+    may be traced: then one compiled function serves all three laws."""
+    n, m = Ts.shape[0], p.shape[0]
+
     def wlf(p):
-        C1, C2 = jnp.exp(p[0]), c2min + jnp.exp(p[1])
+        C1, e1 = jnp.exp(p[0]), jnp.exp(p[1])
         dT = Ts - T_ref
-        return -C1 * dT / (C2 + dT)
+        L = -C1 * dT / (c2min + e1 + dT)
+        dL_dp1 = C1 * dT * e1 / (c2min + e1 + dT) ** 2
+        return L, jnp.zeros((n, m)).at[:, 0].set(L).at[:, 1].set(dL_dp1)
 
     def arrhenius(p):
         g = (1.0 / (Ts + KELVIN) - 1.0 / (T_ref + KELVIN)) / (GAS_CONSTANT * LN10)
-        return jnp.exp(p[0]) * g
+        L = jnp.exp(p[0]) * g
+        return L, jnp.zeros((n, m)).at[:, 0].set(L)
 
     def table(p):
-        q = p[:Ts.shape[0]]
-        # gauge: log10 a_T(T_ref) = 0 on the linear interpolant of the table
-        return q - ShiftTable(Ts, q, T_ref).log10_aT(T_ref)
+        # gauge: log10 a_T(T_ref) = 0 on the table's interpolant (ShiftTable: linear between
+        # the temperatures, the end segments extended), i.e. L = q - w.q with the weights w of
+        # T_ref on its segment
+        if n == 1:
+            return jnp.zeros(1), jnp.zeros((1, m))
+        i = jnp.clip(jnp.searchsorted(Ts, T_ref, side="right"), 1, n - 1)
+        t = (T_ref - Ts[i - 1]) / (Ts[i] - Ts[i - 1])
+        w = jnp.zeros(m).at[i - 1].add(1.0 - t).at[i].add(t)
+        return p[:n] - w @ p, jnp.eye(n, m) - w[None, :]
     branches = {_WLF: wlf, _ARR: arrhenius, _TAB: table}
     if isinstance(kind, int):
         return branches[kind](p)
@@ -221,8 +235,7 @@ def _resid_jac(x, on, data, kind, K, robust):
     Ek = jnp.exp(x[1:K + 1]) * on
     lt = x[K + 1:2 * K + 1]
     plaw = x[2 * K + 1:]
-    L = _law_eval(kind, plaw, Ts, T_ref, c2min)
-    JL = jax.jacfwd(_law_eval, argnums=1)(kind, plaw, Ts, T_ref, c2min)       # (sets, nl)
+    L, JL = _law_eval(kind, plaw, Ts, T_ref, c2min)      # JL: (sets, nl)
     u = jnp.log(w) + LN10 * L[setid]
     wt = jnp.exp(u[:, None] + lt[None, :])
     den = 1.0 + wt * wt

@@ -133,8 +133,8 @@ def _resid_jac(x, on, data, domain, K, robust):
     lE = x[1:K + 1]
     Ek = jnp.exp(lE) * on
     plaw = x[K + 1:]
-    L = _law_eval(kind, plaw, Ts, T_ref, c2min)
-    JL = LN10 * jax.jacfwd(_law_eval, argnums=1)(kind, plaw, Ts, T_ref, c2min)[setid]   # d ln z / d law
+    L, JL = _law_eval(kind, plaw, Ts, T_ref, c2min)
+    JL = LN10 * JL[setid]      # d ln z / d law
     z = jnp.exp((u + LN10 * L[setid])[:, None] + ltau[None, :])
     p1, p2, d1, d2 = _kernel(domain, z)
     m1 = E0 + p1 @ Ek

@@ -6,8 +6,11 @@ import os
 import numpy as np
 import pytest
 
-from vjax import Material, WLF
-from fitting import calibrate, dma, io, master, relaxation, spectrum
+import jax
+import jax.numpy as jnp
+
+from vjax import Arrhenius, Material, WLF
+from fitting import calibrate, dma, io, master, prony, relaxation, spectrum
 from fitting import torque as ft
 from fitting.torque_cli import main as torque_main
 
@@ -42,6 +45,29 @@ def pyvisco_fits(tmp_path_factory):
 def _reduced_range(shift, table):
     wr = table.omega * 10 ** np.asarray(shift.log10_aT(table.T))
     return wr.min(), wr.max()
+
+
+@pytest.mark.parametrize("T_ref", [10.0, 80.0, -40.0])    # inside the sets, beyond either end
+@pytest.mark.parametrize("kind", ["WLF", "Arrhenius", "table"])
+def test_shift_law_values_and_written_out_jacobian(kind, T_ref):
+    """The fits' shift laws (unconstrained parameters) against vjax's WLF and Arrhenius and
+    the ShiftTable interpolant, and their written-out Jacobian against forward-mode AD, with
+    the law's kind as a Python int and traced."""
+    Ts = jnp.array([-20.0, 0.0, 25.0, 60.0])
+    p = jnp.array([2.5, 4.0, -1.0, 0.7, 0.0])      # padded by one, as in the fits
+    c2min = 150.0     # WLF: C2 = 205 C, clear of the asymptote at every T_ref here
+    code = {"WLF": prony._WLF, "Arrhenius": prony._ARR, "table": prony._TAB}[kind]
+    if kind == "WLF":
+        want = WLF(np.exp(2.5), c2min + np.exp(4.0), T_ref).log10_aT(Ts)
+    elif kind == "Arrhenius":
+        want = Arrhenius(np.exp(2.5), T_ref).log10_aT(Ts)
+    else:
+        want = p[:4] - master.ShiftTable(Ts, p[:4], T_ref).log10_aT(T_ref)
+    for k in (code, jnp.asarray(code)):
+        L, J = prony._law_eval(k, p, Ts, T_ref, c2min)
+        J_ad = jax.jacfwd(lambda q: prony._law_eval(k, q, Ts, T_ref, c2min)[0])(p)
+        np.testing.assert_allclose(L, want, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(J, J_ad, rtol=1e-12, atol=1e-12)
 
 
 def test_smooth_fit_of_real_data_does_not_ring_and_beats_pyvisco(pyvisco_fits):
