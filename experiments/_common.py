@@ -19,6 +19,7 @@ computation, e.g. at the top of a script::
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import dataclasses
 import io
@@ -105,14 +106,13 @@ def device_note() -> str:
             f"device(s), {os.cpu_count()} CPUs, {platform.machine()}")
 
 
-def run_at_commit(ref: str, code: str, timeout: float = 3600.0) -> str:
-    """Run the Python snippet ``code`` in a new interpreter with the project as it was at git
-    commit ``ref`` (checked out in a temporary worktree, removed afterwards) first on the
-    import path; returns its standard output. Raises RuntimeError with the end of its standard
-    error if it fails (or if ``ref`` is not a commit of this checkout)."""
+@contextlib.contextmanager
+def worktree_at(ref: str):
+    """The project as it was at git commit ``ref``, checked out in a temporary worktree
+    (removed afterwards); yields its path. Raises RuntimeError if ``ref`` is not a commit of
+    this checkout."""
     import os
     import subprocess
-    import sys
     import tempfile
 
     root = Path(__file__).resolve().parent.parent
@@ -123,11 +123,23 @@ def run_at_commit(ref: str, code: str, timeout: float = 3600.0) -> str:
         if add.returncode:
             raise RuntimeError(f"cannot check out {ref!r} for the baseline: {add.stderr.strip()}")
         try:
-            env = dict(os.environ, PYTHONPATH=tree)
-            p = subprocess.run([sys.executable, "-c", code], cwd=tree, env=env, capture_output=True, text=True,
-                               timeout=timeout)
+            yield tree
         finally:
             subprocess.run(["git", "-C", str(root), "worktree", "remove", "--force", tree], capture_output=True)
+
+
+def run_at_commit(ref: str, code: str, timeout: float = 3600.0) -> str:
+    """Run the Python snippet ``code`` in a new interpreter with the project as it was at git
+    commit ``ref`` (:func:`worktree_at`) first on the import path; returns its standard
+    output. Raises RuntimeError with the end of its standard error if it fails (or if ``ref``
+    is not a commit of this checkout)."""
+    import os
+    import subprocess
+    import sys
+
+    with worktree_at(ref) as tree:
+        p = subprocess.run([sys.executable, "-c", code], cwd=tree, env=dict(os.environ, PYTHONPATH=tree),
+                           capture_output=True, text=True, timeout=timeout)
     if p.returncode:
         raise RuntimeError(f"the baseline at {ref} failed ({p.returncode}):\n{p.stderr[-2000:]}")
     return p.stdout
