@@ -209,6 +209,7 @@ def half_sommerfeld_load(eps):
     return eps * jnp.sqrt(jnp.pi**2 * (1 - eps**2) + 4 * eps**2) / ((2 + eps**2) * (1 - eps**2))
 
 
+@jax.jit      # compiled once: the journal scene calls it outside jit, for its start
 def half_sommerfeld_eccentricity(G):
     """The eccentricity ratio whose half-Sommerfeld load is G (element-wise, >= 0)."""
     G = jnp.asarray(G, dtype=float)
