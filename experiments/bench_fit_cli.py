@@ -11,8 +11,7 @@ plots written):
 * the second call again with ``--no-plots`` (the six PNGs: matplotlib's import and drawing);
 * ``vjax-fit --no-cache`` (the behaviour before the cache);
 * pyvisco's default pipeline on the same data (:func:`experiments.dma_fit.run_pyvisco`), in
-  this process, when pyvisco is installed.
-
+  this process, when pyvisco is installed;
 * with ``--baseline REF``: the second call of the code at git commit REF (a temporary
   worktree, its own cache), each repeat right after today's second call (the machine's
   speed drifts by more than the difference between versions).
@@ -96,6 +95,8 @@ def main(out_dir="experiments/out", quick=False, baseline=None):
     header = ("what", "median_s", "min_s", "repeats")
     comments = [f"shipped pyvisco example, {sys.executable}; cache after one first call: {files} files, "
                 f"{size / 1e6:.2f} MB", f"second call / import time = {ratio:.2f} (target <= 3)"]
+    if baseline:
+        comments.append(f"second call today / at {baseline} = {med(second) / med(second_base):.2f}")
     _common.write_csv(os.path.join(out_dir, "bench_fit_cli.csv"), header, rows, comments=comments)
     md = ["# vjax-fit wall time with the persistent compilation cache", "", *[f"- {c}" for c in comments], "",
           "| what | median (s) | min (s) | repeats |", "|---|---|---|---|"]
