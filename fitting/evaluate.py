@@ -8,7 +8,7 @@ persistent compilation cache of the command-line tools skips only XLA's compilat
 
 The formulas are those of :class:`vjax.material.Material` (Prony series), :class:`~vjax.material.WLF`,
 :class:`~vjax.material.Arrhenius` and :class:`fitting.master.ShiftTable` (the table's
-interpolation written as :func:`jax.numpy.interp` computes it); any other law is evaluated
+interpolation as :meth:`~fitting.master.ShiftTable.log10_aT` computes it); any other law is evaluated
 through one jitted function. Importing this module does not import vjax or JAX (so that
 :mod:`fitting.plots` does not either; see :mod:`fitting`).
 """

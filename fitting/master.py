@@ -37,8 +37,16 @@ from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
 from .dma import DMATable, DMAFormatError
 from .evaluate import _table_log10_aT
 
-__all__ = ["ShiftTable", "shift_factors", "fit_wlf", "fit_arrhenius", "fit_law", "read_shift_file",
+__all__ = ["ShiftTable", "segment", "shift_factors", "fit_wlf", "fit_arrhenius", "fit_law", "read_shift_file",
            "pair_shift"]
+
+
+def segment(x, T):
+    """Where ``T`` lies on the table's temperatures ``x`` (increasing, at least two):
+    ``(i, t)`` with the interpolant y[i-1] + t (y[i] - y[i-1]) linear between the
+    temperatures and the end segments extended beyond them (t < 0 or > 1 there)."""
+    i = jnp.clip(jnp.searchsorted(x, T, side="right"), 1, x.shape[0] - 1)
+    return i, (T - x[i - 1]) / (x[i] - x[i - 1])
 
 
 @jax.tree_util.register_dataclass
@@ -59,10 +67,8 @@ class ShiftTable:
         x, y = self.T, self.values
         if x.shape[0] == 1:
             return jnp.zeros_like(T) + y[0]
-        inner = jnp.interp(T, x, y)
-        lo = y[0] + (T - x[0]) * (y[1] - y[0]) / (x[1] - x[0])
-        hi = y[-1] + (T - x[-1]) * (y[-1] - y[-2]) / (x[-1] - x[-2])
-        return jnp.where(T < x[0], lo, jnp.where(T > x[-1], hi, inner))
+        i, t = segment(x, T)
+        return y[i - 1] + t * (y[i] - y[i - 1])
 
     @classmethod
     def make(cls, T, log10_aT, T_ref) -> "ShiftTable":

@@ -49,7 +49,7 @@ from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, Material, WLF
 
 from . import _optim, evaluate
 from .dma import DMATable
-from .master import ShiftTable
+from .master import ShiftTable, segment
 
 __all__ = ["PronyFit", "fit_master", "choose_terms", "refine", "raw_errors", "log_residual"]
 
@@ -210,13 +210,11 @@ def _law_eval(kind, p, Ts, T_ref, c2min):
         return L, jnp.zeros((n, m)).at[:, 0].set(L)
 
     def table(p):
-        # gauge: log10 a_T(T_ref) = 0 on the table's interpolant (ShiftTable: linear between
-        # the temperatures, the end segments extended), i.e. L = q - w.q with the weights w of
-        # T_ref on its segment
+        # gauge: log10 a_T(T_ref) = 0 on the table's interpolant, i.e. L = q - w.q with the
+        # weights w of T_ref on its segment
         if n == 1:
             return jnp.zeros(1), jnp.zeros((1, m))
-        i = jnp.clip(jnp.searchsorted(Ts, T_ref, side="right"), 1, n - 1)
-        t = (T_ref - Ts[i - 1]) / (Ts[i] - Ts[i - 1])
+        i, t = segment(Ts, T_ref)
         w = jnp.zeros(m).at[i - 1].add(1.0 - t).at[i].add(t)
         return p[:n] - w @ p, jnp.eye(n, m) - w[None, :]
     branches = {_WLF: wlf, _ARR: arrhenius, _TAB: table}

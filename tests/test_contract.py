@@ -1,5 +1,6 @@
 """The scene contract: the same inputs, result fields and failure path in every scene."""
 import dataclasses
+import logging
 
 import jax
 import jax.numpy as jnp
@@ -51,7 +52,6 @@ def test_a_repeated_call_compiles_nothing(scene):
     """A second call with the same shapes reuses every compiled function: no step of a scene
     runs as a new closure through an eager lax loop (the journal's rigid start once cost a
     compilation per call, ~0.1 s, seven times its solve)."""
-    import logging
     scene()
     compiled = []
 
