@@ -36,7 +36,7 @@ jax.config.update("jax_enable_x64", True)
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from fitting import calibrate, dma, plots  # noqa: E402
+from fitting import calibrate, dma, figures  # noqa: E402
 
 DATASETS = [("pyvisco_freq_user_raw", lambda: dma.default_data("pyvisco"), 25.0, {}),
             ("dmasuite_E_0to105C", lambda: dma.default_data("dmasuite"), 70.0, {})]
@@ -144,7 +144,7 @@ def main(out_dir="experiments/out", quick=False):
         mat, shift, rep = calibrate(path, T_ref, os.path.join(out_dir, name), stem=name, plots_=False, tensile=False,
                                     **kw)
         wall = time.perf_counter() - t0
-        plots.save_all(os.path.join(out_dir, name), name, table, mat, shift, rep.data_shift, rep.laws)
+        figures.save_all(os.path.join(out_dir, name), name, table, mat, shift, rep.data_shift, rep.laws)
         rows.append(_vjax_row(name, "vjax smooth (default)", rep, wall, T_ref))
         print(f"[{name}] vjax smooth: {rep.terms} terms, {wall:.2f} s\n{rep.table()}", flush=True)
         for tool, opts in (("vjax free times (before)", dict(method="free")),

@@ -308,10 +308,10 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         report.save(jpath, mat, shift, out_kind, files=list(table.files))
         report.outputs.append(jpath)
         if plots_:
-            from . import plots     # matplotlib only when plotting
+            from . import figures
             # plots show the data in their own modulus, hence the fitted (unconverted) material
-            report.outputs += plots.save_all(out_dir, stem, table, fit.material, shift, fits["table"].shift,
-                                             report.laws)
+            report.outputs += figures.save_all(out_dir, stem, table, fit.material, shift, fits["table"].shift,
+                                               report.laws)
     report.wall_time = time.perf_counter() - t0
     return mat, shift, report
 

@@ -91,15 +91,16 @@ def main(argv=None) -> int:
     # threads only contend with XLA's (seconds lost on a busy two-core machine); this takes
     # effect when numpy is not loaded yet, i.e. from the command line
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    if not args.no_plots:
+        from . import figures
+        figures.start_workers()     # matplotlib's import in a fork server, on another core
     import jax
     jax.config.update("jax_enable_x64", True)
     jax_cache.enable(args.no_cache)
     from .calibration import calibrate
-    if not args.no_plots:
-        from . import plots     # matplotlib, before the freeze below
-    # everything loaded so far (JAX, vjax, numpy, matplotlib) lives as long as the process:
+    # everything loaded so far (JAX, vjax, numpy) lives as long as the process:
     # exempt it from the cyclic garbage collector, whose full collections, triggered by the
-    # many objects that tracing and drawing allocate, would walk it again and again (about
+    # many objects that tracing allocates, would walk it again and again (about
     # 0.3 s of a cached call)
     gc.freeze()
 
@@ -120,8 +121,8 @@ def main(argv=None) -> int:
             if rep.kind == "G" and kind == "E":  # plot against the data's own modulus
                 from .calibration import convert_modulus, tensile_over_shear
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
-            written += plots.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
-                                      rep.data_shift, rep.laws)
+            written += figures.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
+                                        rep.data_shift, rep.laws)
     except (ValueError, OSError) as e:
         print(f"vjax-fit: error: {e}", file=sys.stderr)
         return 1

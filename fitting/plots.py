@@ -6,8 +6,9 @@ Each function draws on a new matplotlib :class:`~matplotlib.figure.Figure` on th
 (no pyplot: no display, no global figure list) and, when ``path`` is given, saves it
 atomically (temporary file + os.replace). The layouts are fixed margins in inches (see
 :func:`_figure`): the constrained-layout engine cost half the drawing time of a cached
-``vjax-fit`` call. :mod:`fitting.calibration` and the command lines import this module (and
-matplotlib) only when they plot.
+``vjax-fit`` call. :mod:`fitting.figures` draws a calibration's set of figures (in parallel
+worker processes for the command line); :mod:`fitting.calibration` and the command lines
+import this module (and matplotlib) only when they plot.
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ from matplotlib.figure import Figure
 from . import evaluate, files
 
 __all__ = ["master_curve", "relaxation_curve", "shift_factors", "residuals", "spectrum", "temperature_sweep", "van_gurp_palmen",
-           "save_all", "torque_fit", "moduli"]
+           "torque_fit", "moduli"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
@@ -280,22 +281,6 @@ def relaxation_curve(table, material, shift, path=None):
     fig.colorbar(sc, cax=cax, label="T (C)")
     ax.set_title(f"relaxation master curve at T_ref = {float(shift.T_ref):g} C", fontsize=10)
     return _save(fig, path)
-
-
-def save_all(out_dir, stem, table, material, shift, data_shift, laws=None) -> list:
-    """Write the plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
-    ``_spectrum.png``, ``_tsweep.png`` (E', E'', tan delta versus T at 1 and 10 Hz) and
-    ``_vgp.png`` (van Gurp-Palmen) in ``out_dir``; returns their paths. Relaxation data get
-    ``_master.png`` (:func:`relaxation_curve`), ``_shift.png`` and ``_spectrum.png``.
-    ``laws``: the closed-form laws for the shift plot (see :func:`shift_factors`)."""
-    p = lambda s: os.path.join(out_dir, f"{stem}_{s}.png")
-    if getattr(table, "domain", "frequency") == "time":
-        return [relaxation_curve(table, material, shift, p("master")),
-                shift_factors(data_shift, shift, p("shift"), laws), spectrum(material, p("spectrum"))]
-    return [master_curve(table, material, shift, p("master")), shift_factors(data_shift, shift, p("shift"), laws),
-            residuals(table, material, shift, p("residuals")), spectrum(material, p("spectrum")),
-            temperature_sweep(table, material, shift, (1.0, 10.0), p("tsweep")),
-            van_gurp_palmen(table, material, shift, p("vgp"))]
 
 
 def torque_fit(data, fits, sigma, path=None, truth=None):

@@ -5,7 +5,7 @@ import types
 import numpy as np
 import pytest
 
-from fitting import dma, master, plots
+from fitting import dma, figures, master, plots
 from vjax.material import Material, WLF
 
 MAT = Material.prony(2e6, np.array([8e8, 2e8, 5e7, 1e7]), np.array([1e-6, 1e-4, 1e-2, 1.0]), 0.5)
@@ -31,10 +31,27 @@ def _is_png(path):
 
 def test_save_all_writes_every_plot(tmp_path, data):
     table, shifts = data
-    paths = plots.save_all(str(tmp_path), "m", table, MAT, LAW, shifts)
+    paths = figures.save_all(str(tmp_path), "m", table, MAT, LAW, shifts)
     assert [p.rsplit("_", 1)[1] for p in paths] == ["master.png", "shift.png", "residuals.png", "spectrum.png",
                                                     "tsweep.png", "vgp.png"]
     assert all(_is_png(p) for p in paths)
+
+
+def test_worker_processes_draw_the_same_files_and_raise_the_same_errors(tmp_path, data, monkeypatch):
+    """Figures drawn by the forked workers (what vjax-fit does) are byte for byte those drawn
+    in this process, and a plot's error (bad input) reaches the caller as itself."""
+    table, shifts = data
+    here = figures.save_all(str(tmp_path), "here", table, MAT, LAW, shifts)
+    monkeypatch.setattr(figures, "_context", figures._context)     # restored after the test
+    if not figures.start_workers():
+        pytest.skip("no fork server on this machine (one core or no fork)")
+    there = figures.save_all(str(tmp_path), "there", table, MAT, LAW, shifts)
+    for a, b in zip(here, there):
+        with open(a, "rb") as fa, open(b, "rb") as fb:
+            assert fa.read() == fb.read(), b
+    bad = master.ShiftTable(TEMPS, np.full(TEMPS.shape, np.nan), 30.0)     # past make's checks
+    with pytest.raises(ValueError, match="data_shift must hold finite"):
+        figures.save_all(str(tmp_path), "bad", table, MAT, LAW, bad)
 
 
 def test_temperature_sweep_passes_through_the_data(data):
