@@ -45,7 +45,7 @@ import numpy as np
 
 from vjax.material import Material
 
-from . import _optim, evaluate
+from . import _optim, evaluate, jax_cache
 from .dma import set_temperatures
 from .prony import LN10, PronyFit, _law_eval, _law_spec, _robust
 
@@ -159,8 +159,9 @@ def _solve(x0, active, data, *, domain, K, max_iter, ftol, robust):
     # the shift law's kind is data (a traced index): the table, WLF and Arrhenius fits of a
     # calibration share one compilation
     on = active[1:K + 1]
-    return _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
-                                      resid_jac=lambda x: _resid_jac(x, on, data, domain, K, robust))
+    sol = _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
+                                     resid_jac=lambda x: _resid_jac(x, on, data, domain, K, robust))
+    return tuple(jax.tree.leaves(sol))     # arrays only, for jax_cache.call (LMSolution(*leaves))
 
 
 def _grid(lo, hi, per_decade, max_terms):
@@ -243,9 +244,9 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         D[i, 1 + i:4 + i] = (1.0, -2.0, 1.0)
 
     def run(lam_, x0):
-        sol = _solve(x0, active, base + (math.sqrt(lam_),),
-                     domain=data.domain, K=Kp, max_iter=int(max_iter), ftol=float(ftol),
-                     robust=float(robust))
+        sol = _optim.LMSolution(*jax_cache.call(_solve, (x0, active, base + (math.sqrt(lam_),)),
+                                                domain=data.domain, K=Kp, max_iter=int(max_iter),
+                                                ftol=float(ftol), robust=float(robust)))
         xs = np.asarray(sol.x)
         J = np.asarray(sol.jacobian)[:n_res][live][:, on]
         r = np.asarray(sol.residual)[:n_res][live]

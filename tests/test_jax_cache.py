@@ -38,3 +38,45 @@ def test_small_compilations_are_stored_and_switches_turn_it_off(tmp_path):
     assert _run(tmp_path, VJAX_NO_CACHE="1") == "None" and _files(tmp_path) == 0
     assert _run(tmp_path) == str(cache)
     assert _files(cache) >= 1
+
+
+EXPORT_SNIPPET = ("import sys, jax, jax.numpy as jnp, numpy as np\n"
+                  "jax.config.update('jax_enable_x64', True)\n"
+                  "import functools\n"
+                  "from fitting import jax_cache\n"
+                  "traced = []\n"
+                  "@functools.partial(jax.jit, static_argnames='n')\n"
+                  "def f(x, pair, *, n):\n"
+                  "    traced.append(1)\n"
+                  "    return jnp.sin(x) * n + pair[0], jnp.cumsum(x) ** pair[1]\n"
+                  "if '--enable' in sys.argv:\n"
+                  "    jax_cache.enable()\n"
+                  "n = 4 if '--other-static' in sys.argv else 3\n"
+                  "out = jax_cache.call(f, (np.linspace(0.1, 2.0, 6), (2.0, 3)), n=n)\n"
+                  "print(len(traced), [float(v).hex() for o in out for v in np.asarray(o)])\n")
+
+
+def _export_run(tmp_path, *args):
+    e = {k: v for k, v in os.environ.items() if k != "VJAX_NO_CACHE"}
+    e.update(XDG_CACHE_HOME=str(tmp_path), PYTHONPATH=ROOT)
+    p = subprocess.run([sys.executable, "-c", EXPORT_SNIPPET, *args], env=e, capture_output=True, text=True, check=True)
+    traces, values = p.stdout.split(" ", 1)
+    return int(traces), values
+
+
+def test_exported_programs_skip_tracing_and_give_the_same_bits(tmp_path):
+    """jax_cache.call: the first process with the cache on traces and stores the program, a
+    later one loads it without tracing; both give the bits of the plain call. A different
+    static argument is a different program; a damaged file is exported again."""
+    exported = tmp_path / "vjax" / "jax" / "exported"
+    traces, plain = _export_run(tmp_path)
+    assert traces == 1 and not exported.exists()
+    assert _export_run(tmp_path, "--enable") == (1, plain)
+    assert _files(exported) == 1
+    assert _export_run(tmp_path, "--enable") == (0, plain)          # loaded: nothing traced
+    traces, other = _export_run(tmp_path, "--enable", "--other-static")
+    assert traces == 1 and other != plain and _files(exported) == 2
+    for f in exported.iterdir():
+        f.write_bytes(b"not a program")
+    assert _export_run(tmp_path, "--enable") == (1, plain)
+    assert _export_run(tmp_path, "--enable") == (0, plain)
