@@ -23,10 +23,14 @@ def _mask(*runs, n=N):
 def _shortest_run(mask):
     """Brute force: the shortest circular run (start, length) that holds every True."""
     n = mask.size
+    # rolled[start, k] = mask[(start + k) % n]: the run (start, length) holds every True iff
+    # rolled[start, length:] has none (every start checked at once: an all-True mask tries
+    # all n^2 runs, which one setdiff1d per run made a 46 s test)
+    rolled = mask[(np.arange(n)[:, None] + np.arange(n)) % n]
     for length in range(1, n + 1):
-        for start in range(n):
-            if not mask[np.setdiff1d(np.arange(n), (start + np.arange(length)) % n)].any():
-                return start, length
+        holds = ~rolled[:, length:].any(axis=1)
+        if holds.any():
+            return int(np.argmax(holds)), length
 
 
 @pytest.mark.parametrize("runs", [[(10, 5)], [(N - 3, 7)], [(0, 1)], [(N - 1, 1)], [(5, 3), (40, 2)],

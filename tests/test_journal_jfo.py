@@ -84,17 +84,26 @@ def test_groove_away_from_widest_gap(supply_angle):
 def test_gradient_against_finite_differences():
     """d eps / d viscosity through the implicit derivative of the JFO solve (groove fixed,
     the film re-forming inside the bearing), against central differences."""
-    eps = lambda eta: journal_bearing(R, C, eta, 1e5, omega_shaft=WJ, cavitation="jfo", groove="fixed",
-                                      supply_angle=2.0, options=JournalOptions(n=128)).eccentricity
-    g = float(jax.grad(eps)(ETA))
+    eps = lambda eta, initial=None: journal_bearing(R, C, eta, 1e5, omega_shaft=WJ, cavitation="jfo", groove="fixed",
+                                                    supply_angle=2.0, initial=initial,
+                                                    options=JournalOptions(n=128)).eccentricity
+    # the derivative is implicit, at the root: Newton may start there (then the differentiated
+    # solve compiles without the nested coarse start), jitted to trace it as one program
+    start = journal_bearing(R, C, ETA, 1e5, omega_shaft=WJ, cavitation="jfo", groove="fixed", supply_angle=2.0,
+                            options=JournalOptions(n=128))
+    g = float(jax.jit(jax.grad(lambda eta: eps(eta, start)))(ETA))
     d = 1e-5 * ETA
     fd = (float(eps(ETA + d)) - float(eps(ETA - d))) / (2 * d)
     assert abs(g - fd) < 1e-5 * abs(fd)
 
 
-def _position(kw):
+def _position(kw, initial):
+    """Journal centre (m) against the load, for jax.jacfwd, jitted (traced as one program). Newton
+    starts from ``initial``, the steady solution at the load it is differentiated at: the
+    derivative is implicit, at the root, and the solve compiles without the nested coarse start."""
+    @jax.jit
     def position(W):
-        s = journal_bearing(R, C, ETA, W, **kw)
+        s = journal_bearing(R, C, ETA, W, initial=initial, **kw)
         g = s.line_of_centres_angle
         return s.eccentricity * C * jnp.stack([jnp.cos(g), jnp.sin(g)])
     return position
@@ -113,14 +122,14 @@ def test_dynamic_coefficients():
     whirl = [0.0, 30.0, 300.0]
     jfo = journal_coefficients(R, C, ETA, load, whirl, cavitation="jfo", **kw)
     rey = journal_coefficients(R, C, ETA, load, whirl, cavitation="reynolds", **kw)
-    K = np.linalg.inv(np.asarray(jax.jacfwd(_position(dict(kw, cavitation="jfo")))(load)))
+    K = np.linalg.inv(np.asarray(jax.jacfwd(_position(dict(kw, cavitation="jfo"), jfo.steady))(load)))
     assert np.max(np.abs(np.asarray(jfo.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
     for a, b in ((jfo.stiffness, rey.stiffness), (jfo.damping, rey.damping)):
         assert np.max(np.abs(np.asarray(a) - np.asarray(b))) < 1e-8 * np.abs(np.asarray(b)).max()
 
     kw = dict(omega_shaft=WJ, groove="fixed", supply_angle=2.0, options=JournalOptions(n=128), cavitation="jfo")
     co = journal_coefficients(R, C, ETA, 1e5, [0.0, 1e-3, 1e3], **kw)
-    along = np.asarray(jax.jacfwd(_position(kw))(1e5))               # compliance along the load (-y)
+    along = np.asarray(jax.jacfwd(_position(kw, co.steady))(1e5))     # compliance along the load (-y)
     from_coefficients = np.linalg.solve(np.asarray(co.stiffness[0]), np.array([0.0, -1.0]))
     assert np.max(np.abs(along - from_coefficients)) < 1e-7 * np.abs(along).max()
     Z = np.asarray(co.impedance)
