@@ -10,7 +10,8 @@ Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF
 spectra: fixed times, penalty chosen by GCV; the loss-modulus extrema counter),
 :mod:`fitting.relaxation` (relaxation data E(t)), :mod:`fitting.calibration` (the whole chain),
 :mod:`fitting.io` (material JSON), :mod:`fitting.files` (atomic writes),
-:mod:`fitting.plots`, :mod:`fitting.cli` (``vjax-fit``), :mod:`fitting.eplexor` (Netzsch
+:mod:`fitting.plots` (and :mod:`fitting.figures`, a calibration's set of figures, drawn in
+parallel by the command line), :mod:`fitting.cli` (``vjax-fit``), :mod:`fitting.eplexor` (Netzsch
 Eplexor .xls), :mod:`fitting.export` and :mod:`fitting.export_cli` (``vjax-export``: Abaqus,
 ANSYS, LS-DYNA, COMSOL), :mod:`fitting.jax_cache` (the tools' compilation cache).
 """

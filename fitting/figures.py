@@ -31,7 +31,9 @@ def _cores() -> int:
 def start_workers() -> bool:
     """Start the fork server that the drawing workers are forked from; returns whether
     :func:`save_all` will draw in parallel. Call it before the long work that the server's
-    imports should overlap (the command line calls it before importing JAX)."""
+    imports should overlap (the command line calls it before importing JAX). As with any
+    start method but ``fork``, each worker imports the caller's main module: a script that
+    calls this must guard its work with ``if __name__ == "__main__":``."""
     global _context
     if _context is None and _cores() > 1 and "forkserver" in multiprocessing.get_all_start_methods():
         from multiprocessing import forkserver

@@ -10,9 +10,9 @@ many sub-second compilations). Turn it off with ``VJAX_NO_CACHE=1`` or the tools
 affected: only the tools call :func:`enable`.
 
 XLA's cache still leaves JAX's own work to every process: tracing the Python function and
-lowering it to StableHLO, which for the fit's one large solve (:func:`fitting.spectrum.smooth_fit`)
-costs about 0.5 s of a cached ``vjax-fit`` call, more than XLA's compilation it saves a
-lookup for. :func:`call` keeps that program too: the first call exports it
+lowering it to StableHLO, for the fit's one large solve (:func:`fitting.spectrum.smooth_fit`)
+about 0.5 s of a cached ``vjax-fit`` call, five times the lookup of its compiled code.
+:func:`call` keeps that program too: the first call exports it
 (:mod:`jax.export`) to ``<cache>/exported/``, later processes load it, skip tracing and
 lowering, and run the same compiled program, so their results are bit-identical. The key of an
 exported program holds the function's name, its static arguments, the shapes and dtypes of
