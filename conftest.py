@@ -1,12 +1,28 @@
 """Tests and doctests run in float64. (Strict dtype promotion is not used: it rejects
 float64 * 1j, which the complex-modulus code needs everywhere.)"""
+import atexit
 import gc
 import os
+import shutil
+import tempfile
 
 import jax
 import pytest
 
 jax.config.update("jax_enable_x64", True)
+
+# One XLA compilation per program for the whole run. _release_compiled_code (below) drops
+# JAX's in-memory caches after each module, and pytest-xdist's workers are separate
+# processes: without a shared persistent cache, every module and worker that solves the same
+# scene compiles it again (most of the suite's time is XLA compiling the solvers). The first
+# process to import this file (pytest-xdist's controller) makes the folder and removes it at
+# exit; workers inherit it through the environment. VJAX_TEST_XLA_CACHE="" turns it off.
+if "VJAX_TEST_XLA_CACHE" not in os.environ:
+    os.environ["VJAX_TEST_XLA_CACHE"] = tempfile.mkdtemp(prefix="vjax-test-xla-")
+    atexit.register(shutil.rmtree, os.environ["VJAX_TEST_XLA_CACHE"], ignore_errors=True)
+if os.environ["VJAX_TEST_XLA_CACHE"]:
+    jax.config.update("jax_compilation_cache_dir", os.environ["VJAX_TEST_XLA_CACHE"])
+    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.2)   # not the many tiny eager ops
 # command-line tools called in-process must not write the user's compilation cache
 # (fitting.jax_cache); tests of the cache run the tools in subprocesses without this
 os.environ.setdefault("VJAX_NO_CACHE", "1")

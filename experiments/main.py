@@ -26,7 +26,11 @@ raises stops it (files are written atomically, so nothing half-written is left b
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import importlib
+import io
+import multiprocessing
+import os
 import sys
 import time
 from pathlib import Path
@@ -43,6 +47,11 @@ STAGES = [
     ("dynamics", "experiments.journal_dynamics", "main"),
     ("bores", "experiments.journal_bores", "stage"),
 ]
+# the order stages start in when they run side by side: longest first (times of a full run
+# on two cores), so that the last to finish is a short one
+PRIORITY = [s for name in ("calibration", "journal", "bodies", "roller", "pin", "dynamics", "foundation", "bores")
+            for s in STAGES if s[0] == name]
+DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material.json
 
 
 def calibration_stage(out_dir, quick=False):
@@ -117,27 +126,94 @@ def _summary(reports, times, quick, total):
     return "\n".join(lines), failed
 
 
+class _Prefixed(io.TextIOBase):
+    """A stage worker's stdout: each line prefixed with the stage's name (stages run side by
+    side, their progress lines interleave)."""
+
+    def __init__(self, stream, prefix):
+        self.stream, self.prefix, self.at_line_start = stream, prefix, True
+
+    def write(self, text):
+        for piece in text.splitlines(keepends=True):
+            self.stream.write((self.prefix if self.at_line_start else "") + piece)
+            self.at_line_start = piece.endswith("\n")
+        self.stream.flush()
+        return len(text)
+
+
+def _run_stage(name, out, quick, cache, prefix=True):
+    """Run one stage (in a worker process, or in this one); returns (report, seconds)."""
+    _common.enable_x64()
+    if cache:
+        from fitting import jax_cache
+        jax_cache.enable()
+    module, func = next((m, f) for s, m, f in STAGES if s == name)
+    stdout = sys.stdout
+    if prefix:
+        sys.stdout = _Prefixed(stdout, f"[{name}] ")
+    try:
+        t0 = time.perf_counter()
+        report = getattr(importlib.import_module(module), func)(str(Path(out) / name), quick=quick)
+        return report, time.perf_counter() - t0
+    finally:
+        sys.stdout = stdout
+
+
+def _run_stages(names, out, quick, jobs, cache):
+    """Run the stages, ``jobs`` at a time in worker processes (each stage is mostly XLA
+    compiling its solvers, one core's work), longest first, a stage only after those it reads
+    (DEPENDS). The workers share JAX's persistent compilation cache (``cache``): a solver one
+    stage compiled, another loads. A stage that raises stops the job."""
+    reports, times = {}, {}
+    if jobs <= 1:
+        for name in names:
+            print(f"=== {name} ===", flush=True)
+            reports[name], times[name] = _run_stage(name, out, quick, cache, prefix=False)
+            print(f"[{name}: {times[name]:.1f} s]", flush=True)
+        return reports, times
+    pending, running = list(names), {}
+    ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
+    with concurrent.futures.ProcessPoolExecutor(jobs, mp_context=ctx) as pool:
+        while pending or running:
+            ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))]
+            for name in ready[:jobs - len(running)]:
+                pending.remove(name)
+                print(f"=== {name} (started) ===", flush=True)
+                running[pool.submit(_run_stage, name, out, quick, cache)] = name
+            done, _ = concurrent.futures.wait(running, return_when=concurrent.futures.FIRST_COMPLETED)
+            for future in done:
+                name = running.pop(future)
+                try:
+                    reports[name], times[name] = future.result()
+                except BaseException:
+                    for f in running:
+                        f.cancel()
+                    raise
+                print(f"[{name}: {times[name]:.1f} s]", flush=True)
+    return {n: reports[n] for n in names}, times
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="experiments/out", help="output directory")
     parser.add_argument("--quick", action="store_true", help="small grids: a smoke run in about a minute")
     parser.add_argument("--only", nargs="*", choices=[s[0] for s in STAGES], help="run only these stages")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                        help="stages run side by side in this many processes (default: one per CPU; 1: in this process)")
+    parser.add_argument("--no-cache", action="store_true",
+                        help="do not use vjax's persistent compilation cache (~/.cache/vjax/jax)")
     args = parser.parse_args(argv)
-    _common.enable_x64()
+    if args.jobs < 1:
+        parser.error(f"--jobs must be >= 1, got {args.jobs}")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    reports, times, t_start = {}, {}, time.perf_counter()
-    for name, module, func in STAGES:
-        if args.only and name not in args.only:
-            continue
-        print(f"=== {name} ===", flush=True)
-        t0 = time.perf_counter()
-        reports[name] = getattr(importlib.import_module(module), func)(str(out / name), quick=args.quick)
-        times[name] = time.perf_counter() - t0
-        print(f"[{name}: {times[name]:.1f} s]", flush=True)   # each stage prints its own text
+    names = [s[0] for s in PRIORITY if not args.only or s[0] in args.only]
+    t_start = time.perf_counter()
+    reports, times = _run_stages(names, out, args.quick, args.jobs, not args.no_cache)
+    reports = {s[0]: reports[s[0]] for s in STAGES if s[0] in reports}      # the summary in stage order
     summary, failed = _summary(reports, times, args.quick, time.perf_counter() - t_start)
     _common.atomic_write_text(out / "summary.md", summary)
-    print(f"summary written to {out / 'summary.md'}")
+    print(f"summary written to {out / 'summary.md'} ({time.perf_counter() - t_start:.0f} s)")
     for name, r in reports.items():
         for c in r.checks:
             if not c.passed:

@@ -239,6 +239,7 @@ class _Params:
     W: jax.Array                 # load magnitude (N/m)
     load_angle: jax.Array
     ps: jax.Array                # groove pressure (Pa)
+    groove: jax.Array            # grid index of the groove's cell (int; traced: a groove moved compiles nothing)
     omega_B: jax.Array
     omega_J: jax.Array
     p_ref: jax.Array
@@ -251,7 +252,6 @@ class _Params:
 @dataclasses.dataclass(frozen=True)
 class _Config:
     cavitation: str
-    groove: int
     options: JournalOptions
     tol: float
     fixed_groove: bool = False     # grid on the load line (groove fixed in the bearing)
@@ -329,7 +329,7 @@ def _equations(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
     n = x.shape[0] - 2
     f = _fields(x, pr, cfg, smoothing, deformation)
     r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
-    r = r.at[cfg.groove].set(x[cfg.groove] - pr.ps / pr.p_ref)
+    r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
     Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
     Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
     # the film balances the load, which points along the grid angle offset - attitude
@@ -434,28 +434,41 @@ def _staged(pr: _Params, t):
     return dataclasses.replace(pr, v=pr.v * m, q_ref=pr.q_ref * m, op_B=scale(pr.op_B), op_J=scale(pr.op_J)), m
 
 
-def _continuation(pr, cfg):
+def _continuation(pr, cfg, x0=None):
     """Adaptive continuation in t (see :func:`_staged`): a failed stage halves the step,
-    a converged one lets it grow by 1.5. At most ``stages`` Newton solves."""
+    a converged one lets it grow by 1.5. At most ``stages`` Newton solves. With ``x0``, a
+    direct Newton solve of the target problem (t = 2) from ``x0`` comes first, and the
+    continuation runs only if it fails (``strategy="auto"``); its steps count in the
+    iterations, not in the stages.
+
+    One loop with one Newton solve per turn, the stage parameter traced: the compiled program
+    holds a single copy of the Newton iteration (the costliest part to compile), not one per
+    call site."""
     n = pr.x0.shape[0] - 2
-    q0, _ = _staged(pr, 0.0)
-    x0, st0 = _newton(_guess(q0, n, cfg), q0, cfg)
+    dtype = pr.x0.dtype
+    guess = _guess(_staged(pr, 0.0)[0], n, cfg)
+    DIRECT, FIRST, STEP = 0, 1, 2     # phases: the direct solve, the first stage (t = 0), later stages
 
     def cond(s):
-        t, dt, x, its, nst, stats = s
-        return (t < 2.0) & (nst < cfg.options.stages) & (dt > 1e-3) & st0.converged
+        phase, t, dt, _, _, nst, _, dead = s
+        return (t < 2.0) & (nst < cfg.options.stages) & (dt > 1e-3) & ~dead
 
     def body(s):
-        t, dt, x, its, nst, _ = s
-        t1 = jnp.minimum(t + dt, 2.0)
-        x1, st = _newton(x, _staged(pr, t1)[0], cfg)
+        phase, t, dt, x, its, nst, _, _ = s
+        t1 = jnp.where(phase == DIRECT, 2.0, jnp.where(phase == FIRST, 0.0, jnp.minimum(t + dt, 2.0)))
+        x1, st = _newton(jnp.where(phase == FIRST, guess, x), _staged(pr, t1)[0], cfg)
         ok = st.converged
-        return (jnp.where(ok, t1, t), jnp.where(ok, jnp.minimum(1.5 * dt, 0.5), 0.5 * dt), jnp.where(ok, x1, x),
-                its + st.iterations, nst + 1, st)
+        grown = jnp.where(phase == STEP, jnp.minimum(1.5 * dt, 0.5), dt)
+        return (jnp.where(phase == DIRECT, FIRST, STEP), jnp.where(ok, t1, t),
+                jnp.where(ok, grown, jnp.where(phase == STEP, 0.5 * dt, dt)), jnp.where(ok, x1, x),
+                its + st.iterations, nst + (phase != DIRECT), st,
+                ~ok & (phase == FIRST))       # the easiest stage failed: nothing to continue from
 
-    dtype = x0.dtype
-    init = (jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype), x0, st0.iterations, 1, st0)
-    t, _, x, its, nst, stats = jax.lax.while_loop(cond, body, init)
+    zero = jnp.asarray(0)
+    stats0 = _solve.Stats(zero, jnp.asarray(jnp.inf, dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    init = (jnp.asarray(FIRST if x0 is None else DIRECT), jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype),
+            guess if x0 is None else x0, zero, zero, stats0, jnp.asarray(False))
+    _, t, _, x, its, nst, stats, _ = jax.lax.while_loop(cond, body, init)
     # a stage that did not reach the target problem: its own code, or the iteration limit
     result = jnp.where(t >= 2.0, stats.result, jnp.where(stats.converged, _solve.MAX_ITERATIONS, stats.result))
     return x, _solve.Stats(its, stats.residual, result), nst
@@ -482,21 +495,25 @@ def _solver(pr: _Params, cfg: _Config):
     start = dataclasses.replace(pr, x0=pr.x0.at[:n].max(0.0))
     xr, (st_r, stages) = _solve_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
     x0 = _jfo_start(xr, pr, cfg)
-    x, st = _newton(x0, pr, cfg)
+    # Newton on the exact switch from the Reynolds start. Where the film re-forms before the
+    # groove, that start can be far from the JFO solution and the semismooth Newton stall on
+    # the switch's kinks: then follow the smoothed switch p = (u + sqrt(u^2 + mu^2))/2 from
+    # x0 through mu = JFO_SMOOTHING down to mu = 0 (a turn that ends NONFINITE keeps its start).
+    # One loop over the schedule with one Newton in it (compiled once, mu traced).
+    schedule = jnp.asarray((0.0,) + JFO_SMOOTHING + (0.0,), x0.dtype)
 
-    def smoothed(_):
-        # Where the film re-forms before the groove, the Reynolds start can be far from the
-        # JFO solution and the semismooth Newton stall on the switch's kinks: follow the
-        # smoothed switch p = (u + sqrt(u^2 + mu^2))/2 from mu = 0.1 down to 0 instead.
-        def stage(carry, mu):
-            x, its = carry
-            x1, st1 = _newton(x, pr, cfg, mu)
-            return (jnp.where(st1.result == _solve.NONFINITE, x, x1), its + st1.iterations), None
-        (x1, its), _ = jax.lax.scan(stage, (x0, st.iterations), jnp.asarray(JFO_SMOOTHING, x0.dtype))
-        x2, st2 = _newton(x1, pr, cfg)
-        return x2, _solve.Stats(its + st2.iterations, st2.residual, st2.result)
+    def cond(s):
+        i, _, _, st = s
+        return (i < schedule.shape[0]) & ~((i == 1) & st.converged)
 
-    x, st = jax.lax.cond(st.converged, lambda _: (x, st), smoothed, None)
+    def body(s):
+        i, x, its, _ = s
+        x1, st = _newton(jnp.where(i == 1, x0, x), pr, cfg, schedule[i])
+        return i + 1, jnp.where(st.result == _solve.NONFINITE, x, x1), its + st.iterations, st
+
+    stats0 = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), stats0))
+    st = _solve.Stats(its, st.residual, st.result)
     result = jnp.where(st_r.converged, st.result, st_r.result)
     return x, (_solve.Stats(st_r.iterations + st.iterations, st.residual, result), stages)
 
@@ -505,16 +522,11 @@ def _solve_steady(pr: _Params, cfg: _Config):
     compliant = pr.op_B is not None or pr.op_J is not None
     x0 = jax.lax.stop_gradient(pr.x0)
     strategy = cfg.options.strategy if compliant else "newton"
-    if strategy == "continuation":
-        x, stats, stages = _continuation(pr, cfg)
-    else:
+    if strategy == "newton":
         x, stats = _newton(x0, pr, cfg)
         stages = jnp.asarray(0)
-        if strategy == "auto":
-            def fallback(_):
-                x2, st2, nst = _continuation(pr, cfg)
-                return x2, _solve.Stats(stats.iterations + st2.iterations, st2.residual, st2.result), nst
-            x, stats, stages = jax.lax.cond(stats.converged, lambda _: (x, stats, stages), fallback, None)
+    else:
+        x, stats, stages = _continuation(pr, cfg, x0 if strategy == "auto" else None)
     # the residual of the target problem at the returned point (after a failed
     # continuation x belongs to an intermediate stage)
     r = jnp.max(jnp.abs(_equations(x, pr, cfg)[0]))
@@ -547,7 +559,7 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
     Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
     Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
     Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + liquid * eta * dU**2 / hf)
-    g = cfg.groove
+    g = pr.groove
     gamma = pr.load_angle + phi
     rot = jnp.array([[jnp.cos(gamma), -jnp.sin(gamma)], [jnp.sin(gamma), jnp.cos(gamma)]])
     force = -rot @ jnp.stack([Fx, Fy])
@@ -724,8 +736,7 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     dtype = jnp.result_type(float)
     floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
     tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
-    cfg = _Config(cavitation, int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n, options, float(tol),
-                  groove == "fixed")
+    cfg = _Config(cavitation, options, float(tol), groove == "fixed")
 
     f = lambda v: jnp.asarray(v, dtype)
     W = jnp.hypot(Wx, Wy)
@@ -733,7 +744,8 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
     p_ref = W / (2 * R)
     pr = _Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=f(W), load_angle=f(jnp.arctan2(Wy, Wx)),
-                 ps=f(supply_pressure), omega_B=f(omega_housing), omega_J=f(omega_shaft), p_ref=f(p_ref),
+                 ps=f(supply_pressure), groove=jnp.asarray(int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n),
+                 omega_B=f(omega_housing), omega_J=f(omega_shaft), p_ref=f(p_ref),
                  q_ref=f(c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c),
                  op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
                  op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,

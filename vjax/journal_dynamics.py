@@ -164,7 +164,7 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: _Params, cfg: _Conf
     fraction_rate = jnp.where(pz < 0, pzdot, 0.0) if jfo else 0.0
     squeeze = pr.R * (hdot * fraction + h * fraction_rate)
     r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze)
-    r = r.at[cfg.groove].set(pz[cfg.groove] - pr.ps / pr.p_ref)
+    r = r.at[pr.groove].set(pz[pr.groove] - pr.ps / pr.p_ref)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
     F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * cos), jnp.sum(p_load * sin)])
     return r, F

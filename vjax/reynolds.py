@@ -77,8 +77,10 @@ def pressure_and_fraction(u, cavitation, smoothing=0.0):
         return u, jnp.ones_like(u)
     if isinstance(smoothing, (int, float)) and smoothing == 0:
         p = jnp.maximum(u, 0.0)
-    else:
-        p = 0.5 * (u + jnp.sqrt(u * u + smoothing**2))
+    else:   # mu traced (the solver's homotopy loop): the exact switch at mu = 0, no 0/0 slope
+        s = u * u + smoothing**2
+        smooth = 0.5 * (u + jnp.sqrt(jnp.where(s > 0, s, 1.0)))
+        p = jnp.where(smoothing > 0, smooth, jnp.maximum(u, 0.0))
     return p, 1.0 + u - p
 
 
