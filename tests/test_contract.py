@@ -29,6 +29,13 @@ def journal(load=2e4, throw=True, **options):
                                 throw=throw)
 
 
+def coefficients(load=2e4):
+    """The journal's dynamic coefficients, half-Sommerfeld: their linearization re-solves the
+    unclipped film (a Newton loop) after the scene's own solve."""
+    return vjax.journal_coefficients(0.05, 5e-5, 0.01, load, [0.0, 50.0], omega_shaft=100.0,
+                                     cavitation="half_sommerfeld", options=JournalOptions(n=32))
+
+
 # A load each scene cannot carry within its iteration cap: 50x the pin's and roller's
 # design load in one step, and a rigid journal bearing at 1e6 times its load (eps -> 1)
 # with a single continuation stage.
@@ -47,11 +54,12 @@ def test_every_result_has_the_common_fields_and_a_short_repr(scene):
     assert len(repr(r)) < 1500 and "array" in repr(r) and "converged" in r.summary()
 
 
-@pytest.mark.parametrize("scene", [pin, roller, journal])
+@pytest.mark.parametrize("scene", [pin, roller, journal, coefficients])
 def test_a_repeated_call_compiles_nothing(scene):
     """A second call with the same shapes reuses every compiled function: no step of a scene
     runs as a new closure through an eager lax loop (the journal's rigid start once cost a
-    compilation per call, ~0.1 s, seven times its solve)."""
+    compilation per call, ~0.1 s, seven times its solve; the coefficients' half-Sommerfeld
+    re-solve 5 s per call)."""
     scene()
     compiled = []
 
@@ -75,8 +83,11 @@ def test_failure_path_inside_and_outside_jit(name):
     r = scene(load, throw=False, **caps)
     assert not bool(r.converged)
     assert np.all(np.isfinite(np.asarray(r.pressure))) and np.isfinite(float(r.torque))
-    with pytest.raises(vjax.ConvergenceError, match=f"{name} did not converge"):
+    with pytest.raises(vjax.ConvergenceError, match=f"{name} did not converge") as error:
         scene(load, **caps)
+    # outside jit the error carries the unconverged result: no second solve to inspect it
+    assert not bool(error.value.solution.converged)
+    assert float(error.value.solution.residual) == float(r.residual)
     with pytest.raises(Exception, match=f"{name} did not converge"):
         jax.jit(lambda f: scene(f, **caps).torque)(load).block_until_ready()
 

@@ -36,20 +36,22 @@ def coefficients(eps, conditions, n, whirl=(0.0, 30.0)):
 @pytest.mark.parametrize("conditions", ["half_sommerfeld", "sommerfeld"])
 @pytest.mark.parametrize("eps", [0.1, 0.5, 0.9])
 def test_rigid_closed_form(conditions, eps):
-    """K and C at two whirl frequencies against the closed forms at the solved eccentricity;
-    second order in the cell size, so the Richardson extrapolation of n = 512 and 1024
-    matches to 1e-4 of the largest coefficient."""
+    """K and C at two whirl frequencies against the closed forms at the solved eccentricity:
+    second order in the cell size (the error falls 4x from n = 256 to 512: measured 3.99-4.01
+    in every case), and the Richardson extrapolation of the two matches to 1e-5 of the largest
+    coefficient (measured at most 1.2e-6, at eps = 0.9)."""
     extrapolated = []
-    for n in (512, 1024):
+    for n in (256, 512):
         co = coefficients(eps, conditions, n)
         K, Cd = co.in_line_of_centres()
         Kr, Cr = reference.long_bearing_coefficients(co.steady.eccentricity, R, C, ETA, V, conditions)
         extrapolated.append((np.asarray(K) - np.asarray(Kr) / 1.0, np.asarray(Cd) - np.asarray(Cr)))
         scale = (float(jnp.max(jnp.abs(Kr))), float(jnp.max(jnp.abs(Cr))))
     for part, s in zip(range(2), scale):
-        e512, e1024 = extrapolated[0][part], extrapolated[1][part]
-        assert np.max(np.abs(e1024)) < 2e-4 * s                       # n = 1024 alone
-        assert np.max(np.abs((4 * e1024 - e512) / 3)) < 1e-5 * s     # converging at second order
+        e256, e512 = extrapolated[0][part], extrapolated[1][part]
+        assert np.max(np.abs(e512)) < 8e-4 * s                        # n = 512 alone (measured <= 4.8e-4)
+        assert 3.8 < np.max(np.abs(e256)) / np.max(np.abs(e512)) < 4.2  # second order
+        assert np.max(np.abs((4 * e512 - e256) / 3)) < 1e-5 * s      # the extrapolation
     # rigid bodies: the coefficients do not depend on the whirl frequency
     assert np.allclose(co.stiffness[0], co.stiffness[1], rtol=1e-12, atol=0)
     assert np.allclose(co.damping[0], co.damping[1], rtol=1e-9, atol=1e-9 * scale[1])

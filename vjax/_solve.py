@@ -33,7 +33,14 @@ MESSAGES = ("converged", "reached its iteration limit", "line search stalled (no
 
 
 class ConvergenceError(RuntimeError):
-    """A solve did not reach its tolerance (see the message for which solve and why)."""
+    """A solve did not reach its tolerance (see the message for which solve and why).
+
+    ``solution``: the unconverged result (a scene's result record) when raised outside jit,
+    to inspect without solving again with ``throw=False``; None when raised inside jit."""
+
+    def __init__(self, message, solution=None):
+        super().__init__(message)
+        self.solution = solution
 
 
 @jax.tree_util.register_dataclass
@@ -60,13 +67,14 @@ def _fail_message(what, result, iterations, residual):
     where = f" at {bad.size} of {result.size} points (first: flat index {i})" if result.size > 1 else ""
     return (f"{what} did not converge{where}: {MESSAGES[int(result.ravel()[i])]} after "
             f"{int(np.ravel(iterations)[i])} iterations, residual {float(np.ravel(residual)[i]):.3e}. "
-            f"Pass throw=False to inspect the result, or change the options.")
+            f"The error's .solution holds the unconverged result (outside jit), as throw=False would; "
+            f"or change the options.")
 
 
-def _raise(what, result, iterations, residual):
+def _raise(what, result, iterations, residual, solution=None):
     message = _fail_message(what, result, iterations, residual)
     if message is not None:
-        raise ConvergenceError(message)
+        raise ConvergenceError(message, solution)
 
 
 def report(what: str, stats: Stats, throw: bool) -> None:
@@ -75,7 +83,7 @@ def report(what: str, stats: Stats, throw: bool) -> None:
         return
     args = (stats.result, stats.iterations, stats.residual)
     if is_concrete(args):
-        _raise(what, *args)
+        _raise(what, *args, solution=stats)
     else:
         # The host callback only on failure: run on every call it cost ~0.4 ms, more than
         # a whole pin solve at n = 512. (Under vmap the cond runs both branches, as before.)
@@ -157,7 +165,10 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
             lam = 0.5 * lam
             return (lam, *trial(lam), j + 1)
 
-        lam, rt, st, ok, _ = jax.lax.while_loop(ls_cond, ls_body, (jnp.asarray(1.0, r.dtype), *trial(1.0), 0))
+        # the full step is the loop's first turn (from lam = 2), not a call before it: one copy
+        # of fn in the compiled line search instead of two (fn is most of a Newton's program)
+        lam, rt, st, ok, _ = jax.lax.while_loop(ls_cond, ls_body,
+                                                (jnp.asarray(2.0, r.dtype), r, state, jnp.asarray(False), -1))
         ok = ok & finite
         x_new = jnp.where(ok, x + lam * dx, x)
         r_new = jnp.where(ok, rt, r)

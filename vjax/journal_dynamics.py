@@ -233,6 +233,24 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
     return jnp.einsum("ij,mjk,lk->mil", R, Z_grid, R)
 
 
+@partial(jax.jit, static_argnames="cfg")
+def _linearized(x0, pr: _Params, bodies, whirl, cfg: _Config):
+    """(Z, C, Stats of the half-Sommerfeld pressure's solve or None) about the steady unknowns
+    ``x0``; one compiled program per configuration (the solve of the unclipped pressure's
+    Newton, traced outside jit, compiled anew on every call)."""
+    stats = None
+    if cfg.cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
+        x0, stats = _solve.implicit_root(lambda prm: _newton(prm.x0, prm, cfg),
+                                         lambda x, aux, prm: _equations(x, prm, cfg)[0])(pr)
+    # Z and dZ/dOmega (each Z_m depends on Omega_m only): C = Im Z / Omega, or its limit
+    # d(Im Z)/dOmega at Omega = 0
+    Z, dZ = jax.jvp(lambda w: _impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
+    at_rest = (whirl == 0)[:, None, None]
+    C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
+    return Z, C, stats
+
+
 def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None,
                          omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, cavitation: str = "reynolds",
                          supply_angle=math.pi, supply_pressure=0.0, groove: str = "line_of_centres", temperature=None,
@@ -266,17 +284,9 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     # the universal unknown of "jfo" (film fraction - 1 in its cavity; the pressure elsewhere)
     x0 = jnp.concatenate([sol.pressure / pr.p_ref + sol.film_fraction - 1.0,
                           jnp.stack([sol.eccentricity, sol.attitude_angle])])
-    if cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
-        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
-        x0, stats = _solve.implicit_root(lambda prm: _newton(prm.x0, prm, cfg),
-                                         lambda x, aux, prm: _equations(x, prm, cfg)[0])(pr)
+    Z, C, stats = _linearized(x0, pr, ((hb, pr.R, -pr.omega_B), (sb, pr.RJ, -pr.omega_J)), whirl, cfg)
+    if stats is not None:
         _solve.report("journal_coefficients (half-Sommerfeld pressure)", stats, throw)
-    bodies = ((hb, pr.R, -pr.omega_B), (sb, pr.RJ, -pr.omega_J))
-    # Z and dZ/dOmega (each Z_m depends on Omega_m only): C = Im Z / Omega, or its limit
-    # d(Im Z)/dOmega at Omega = 0
-    Z, dZ = jax.jvp(lambda w: _impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
-    at_rest = (whirl == 0)[:, None, None]
-    C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
     return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=Z.real, damping=C,
                                speed=jnp.asarray(omega_shaft, whirl.dtype), steady=sol)
 
