@@ -611,11 +611,11 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
     fmts = parse_formats(formats)
     texts, base = [], None
     for fmt in fmts:
-        if base is None:
-            base = prepare(m, terms, max_terms, messages=messages)
-        series = base
-        if fmt in CARD_LIMIT and len(base.G) + 1 > CARD_LIMIT[fmt]:     # refit the full series to the limit
+        if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
             series = prepare(m, "full", None, window, CARD_LIMIT[fmt], messages)
+        else:
+            base = base or prepare(m, terms, max_terms, messages=messages)
+            series = base
         text = render(series, fmt, u.name, temperature, name=stem.upper().replace(" ", "_") or "VJAX",
                       density=density)
         parts = text if isinstance(text, tuple) else (text,)
