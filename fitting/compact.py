@@ -123,12 +123,24 @@ def deviation(series: Series, full: Series, window) -> dict:
             "loss_median": float(np.median(dl)), "loss_max": float(dl.max())}
 
 
+def _kernel(kind, x, tau):
+    """Response of unit arms (times ``tau``) at ``x`` and its derivative with respect to
+    ln tau, and whether the long-term modulus adds: storage and loss at angular frequency x,
+    relaxation E(t) at time x."""
+    if kind == "relaxation":
+        z = x[:, None] / tau[None, :]
+        p = np.exp(-z)
+        return p, z * p, True
+    ps, pl, dps, dpl = _arms(x, tau)
+    return (ps, dps, True) if kind == "storage" else (pl, dpl, False)
+
+
 def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, target=None,
               robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100) -> Series:
-    """The ``n``-term series (plus a long-term modulus E0) closest in log storage and loss
-    modulus to ``target`` = (omega, storage, loss) (reduced rad/s and Pa: the DMA points under
-    the material's shift law), or without it to ``full``'s moduli over ``window`` =
-    (omega_min, omega_max) (rad/s, reduced); relaxation times within
+    """The ``n``-term series (plus a long-term modulus E0) closest in log modulus to
+    ``target``: the DMA points under the material's shift law, (omega, storage, loss) (reduced
+    rad/s, Pa) or ('time', t, E) (reduced s, Pa); without it ``full``'s storage and loss over
+    ``window`` = (omega_min, omega_max) (rad/s, reduced). Relaxation times stay within
     [1/omega_max, 1/omega_min] widened by ``margin`` decades (module docstring). ``robust``:
     scale (decades) of the Cauchy loss on the data's residuals (0: least squares), as the
     calibration's (a few inconsistent points do not bend the series); ``weights``: of the
@@ -140,36 +152,42 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
     if target is None:
         w = _samples((lo, hi))
-        s, l = _moduli(full, w)
+        st, ls = _moduli(full, w)
+        parts = [("storage", w, st, 1.0), ("loss", w, ls, 1.0)]
+    elif isinstance(target[0], str):          # ("time", t, E)
+        parts = [("relaxation", np.asarray(target[1], float), np.asarray(target[2], float), 1.0)]
     else:
-        w, s, l = (np.asarray(a, float) for a in target)
-    m = len(w)
+        w, st, ls = (np.asarray(v, float) for v in target)
+        parts = [("storage", w, st, weights[0]), ("loss", w, ls, weights[1])]
+    scale = float(max(np.max(p[2]) for p in parts))
     lt_lo, lt_hi = -math.log(hi) - margin * LN10, -math.log(lo) + margin * LN10
     ltau = np.linspace(-math.log(hi), -math.log(lo), n) if n > 1 else np.array([-0.5 * math.log(lo * hi)])
-    # start: non-negative moduli at these times (relative residuals of both moduli)
-    ps, pl, _, _ = _arms(w, np.exp(ltau))
-    A = np.block([[np.ones((m, 1)), ps], [np.zeros((m, 1)), pl]]) / np.concatenate([s, l])[:, None]
-    x0, _ = optim.nnls(A, np.ones(2 * m))
-    scale = float(np.max(s))
+    # start: non-negative moduli at these times (relative residuals)
+    rows = []
+    for kind, x, y, _ in parts:
+        k, _, e0 = _kernel(kind, x, np.exp(ltau))
+        rows.append(np.hstack([np.full((len(x), 1), float(e0)), k]) / y[:, None])
+    A = np.vstack(rows)
+    x0, _ = optim.nnls(A, np.ones(A.shape[0]))
     x = np.concatenate([np.log(np.maximum(x0, 1e-9 * scale) / scale), ltau])
-    ys, yl = np.log10(s / scale), np.log10(l / scale)
-    pen, wts = 10.0, weights
+    pen = 10.0
 
     def resid_jac(x):
         E0, Ek, lt = math.exp(x[0]), np.exp(x[1:n + 1]), x[n + 1:]
-        ps, pl, dps, dpl = _arms(w, np.exp(lt))
-        st, lo_ = E0 + ps @ Ek, pl @ Ek
-        cs, cl = 1.0 / (LN10 * st), 1.0 / (LN10 * lo_)
-        Js = np.hstack([(cs * E0)[:, None], cs[:, None] * ps * Ek, cs[:, None] * dps * Ek])
-        Jl = np.hstack([np.zeros((m, 1)), cl[:, None] * pl * Ek, cl[:, None] * dpl * Ek])
-        above, below = lt > lt_hi, lt < lt_lo
-        bound = pen * (np.where(above, lt - lt_hi, 0.0) + np.where(below, lt_lo - lt, 0.0))
-        Jb = np.hstack([np.zeros((n, n + 1)), np.diag(pen * (above.astype(float) - below.astype(float)))])
-        r = np.concatenate([wts[0] * (np.log10(st) - ys), wts[1] * (np.log10(lo_) - yl)])
-        J = np.vstack([wts[0] * Js, wts[1] * Jl])
+        rs, Js = [], []
+        for kind, xs, y, wt in parts:
+            k, dk, e0 = _kernel(kind, xs, np.exp(lt))
+            model = k @ Ek + (E0 if e0 else 0.0)
+            c = wt / (LN10 * model)
+            rs.append(wt * np.log10(model * scale / y))
+            Js.append(np.hstack([(c * E0 * e0)[:, None], c[:, None] * k * Ek, c[:, None] * dk * Ek]))
+        r, J = np.concatenate(rs), np.vstack(Js)
         if robust:
             r, dr = _cauchy(r, robust)
             J = J * dr[:, None]
+        above, below = lt > lt_hi, lt < lt_lo
+        bound = pen * (np.where(above, lt - lt_hi, 0.0) + np.where(below, lt_lo - lt, 0.0))
+        Jb = np.hstack([np.zeros((n, n + 1)), np.diag(pen * (above.astype(float) - below.astype(float)))])
         return np.concatenate([r, bound]), np.vstack([J, Jb]), None
 
     x, *_ = optim.levenberg_marquardt_host(resid_jac, x, max_iter=max_iter, ftol=1e-6)

@@ -66,7 +66,7 @@ from .evaluate import tensile_over_shear
 from .files import write_atomic
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
-           "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name"]
+           "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name", "data_points"]
 
 FORMATS = ("abaqus", "ansys", "lsdyna", "comsol")
 # output unit system -> (Pa -> stress unit, stress name, energy name, kg/m^3 -> density unit, density name)
@@ -273,7 +273,7 @@ def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
 
 
 # ---- the series written: compact by default, refit to a code's card limit ----------------
-def _data(m: FEMMaterial):
+def data_points(m: FEMMaterial):
     """(target points, errors_of) from the DMA files the fit names, or None when they are not
     all readable. ``target``: reduced omega (rad/s), storage, loss of the points in this
     series' own modulus; ``errors_of(series)``: the series' errors on the points."""
@@ -283,7 +283,7 @@ def _data(m: FEMMaterial):
     try:
         if relaxation.is_relaxation(list(m.files)):
             table = relaxation.read(list(m.files))
-            rate, target = 1.0 / table.t, None
+            rate = 1.0 / table.t
         else:
             table = dma.read(list(m.files))
             rate = table.omega
@@ -291,6 +291,8 @@ def _data(m: FEMMaterial):
         return None
     wr = rate * 10.0 ** m.log10_aT(table.T)
     if table.domain == "time":
+        target = ("time", 1.0 / wr, table.modulus / m.to_data)
+
         def errors_of(s):
             r = np.abs(np.log10(evaluate.relaxation(s.scaled(m.to_data), 1.0 / wr) / table.modulus))
             return {"relaxation_median": float(np.median(r)), "relaxation_p90": float(np.percentile(r, 90))}
@@ -328,7 +330,7 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
     if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 1):
         raise ValueError(f"max_terms must be an integer >= 1, got {max_terms!r}")
     say = messages.append if messages is not None else (lambda s: None)
-    data = _data(m) if terms == "compact" or limit else None
+    data = data_points(m) if terms == "compact" or limit else None
     wdata, wsource = _window(m, data)
     out = m
     if terms == "full":
@@ -337,10 +339,8 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                              f"--full-spectrum to write a compact refit of at most {max_terms} terms")
     else:
         cap = min(max_terms or compact.MAX_TERMS, len(m.G)) if len(m.G) else 1
-        if data is not None and data[0] is not None:
+        if data is not None:
             c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap)
-        elif data is not None:
-            c = compact.choose(m.series, wdata, errors_of=data[1], max_terms=cap)
         elif m.errors:
             c = compact.choose(m.series, wdata, reference=m.errors, max_terms=cap)
         else:
@@ -437,6 +437,9 @@ class _Units:
             + (f", energy {self.energy}" if m.law == "Arrhenius" else "") + f"; {rho}",
             f"shift law {law}; vjax: log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref), a_T > 1 below T_ref"
             if m.law == "WLF" else f"shift law {law}; vjax: ln a_T = Ea/R (1/T - 1/T_ref), T in K",
+            "check (e.g. a one-element relaxation test): " + ", ".join(
+                f"log10 a_T({T:g} C) = {float(m.log10_aT(T)):.6g}" for T in (m.T_ref - 20, m.T_ref + 20)
+                if m.law != "WLF" or m.shift["C2"] > 20),
             f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, "
             f"G_g = {_num(self.p(m.G_g))}; elastic bulk K = {_num(self.p(m.K))}",
             fields]
