@@ -339,6 +339,9 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                              f"--full-spectrum to write a compact refit of at most {max_terms} terms")
     else:
         cap = min(max_terms or compact.MAX_TERMS, len(m.G)) if len(m.G) else 1
+        if data is None and not m.errors and len(m.G) <= (max_terms or compact.MAX_TERMS):
+            say(f"{len(m.G)} terms kept as fitted (no DMA data or recorded errors to check a refit against)")
+            return m if not limit else prepare(m, "full", None, window, limit, messages)
         if data is not None:
             c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap)
         elif m.errors:
@@ -438,7 +441,7 @@ class _Units:
             f"shift law {law}; vjax: log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref), a_T > 1 below T_ref"
             if m.law == "WLF" else f"shift law {law}; vjax: ln a_T = Ea/R (1/T - 1/T_ref), T in K",
             "check (e.g. a one-element relaxation test): " + ", ".join(
-                f"log10 a_T({T:g} C) = {float(m.log10_aT(T)):.6g}" for T in (m.T_ref - 20, m.T_ref + 20)
+                f"log10 a_T at {self.T(T):g} {self.T_unit} = {float(m.log10_aT(T)):.6g}" for T in (m.T_ref - 20, m.T_ref + 20)
                 if m.law != "WLF" or m.shift["C2"] > 20),
             f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, "
             f"G_g = {_num(self.p(m.G_g))}; elastic bulk K = {_num(self.p(m.K))}",
