@@ -190,7 +190,8 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         Jb = np.hstack([np.zeros((n, n + 1)), np.diag(pen * (above.astype(float) - below.astype(float)))])
         return np.concatenate([r, bound]), np.vstack([J, Jb]), None
 
-    x, *_ = optim.levenberg_marquardt_host(resid_jac, x, max_iter=max_iter, ftol=1e-6)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):    # a wild trial step: its
+        x, *_ = optim.levenberg_marquardt_host(resid_jac, x, max_iter=max_iter, ftol=1e-6)   # cost is inf, rejected
     order = np.argsort(x[n + 1:])
     return Series(float(math.exp(x[0]) * scale), np.exp(x[1:n + 1])[order] * scale, np.exp(x[n + 1:])[order])
 
