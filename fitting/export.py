@@ -380,7 +380,7 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                 f"storage median {dev['storage_median']:.4f} ({_pct(dev['storage_median'])}), max "
                 f"{dev['storage_max']:.4f}; loss median {dev['loss_median']:.4f} ({_pct(dev['loss_median'])}), max "
                 f"{dev['loss_max']:.4f} decades")
-        if data is not None:
+        if data is not None and window is None:       # (a narrower window leaves points outside it)
             e = data[1](s)
             note += "; on the DMA data " + ", ".join(f"{k.split('_')[0]} median {e[k]:.4f}" for k in
                                                     ("storage_median", "loss_median", "relaxation_median") if k in e)
