@@ -72,13 +72,15 @@ class Series:
 
 @dataclasses.dataclass(frozen=True)
 class Choice:
-    """What :func:`choose` kept: ``series``; ``met``: it meets the criterion; ``errors``
-    (its accuracy, same keys as ``reference``: the full fit's), ``extrema`` (loss modulus
-    over the window), ``basis`` ('data' or 'full fit'), ``tried``: rows (terms, errors,
-    extrema) of each count tried."""
+    """What :func:`choose` kept: ``series``; ``met``: it meets the criterion (accurate and
+    smooth); ``accurate``: it holds the accuracy; ``errors`` (its accuracy, same keys as
+    ``reference``: the full fit's errors on the data), ``extrema`` (loss modulus over the
+    window), ``basis`` ('data': errors on the DMA points, or 'full fit': deviations from it),
+    ``tried``: rows (terms, errors, extrema) of each count tried."""
 
     series: Series
     met: bool
+    accurate: bool
     errors: dict
     reference: dict
     extrema: int
@@ -248,4 +250,4 @@ def choose(full: Series, window, errors_of=None, reference=None, target=None, ma
         n, met = int(max_terms), False
     s, e, ext, _ = run(n)
     tried = tuple((k, {q: v[1][q] for q in keys}, v[2]) for k, v in sorted(fits.items()))
-    return Choice(s, met, e, ref, ext, basis, tried)
+    return Choice(s, met, accurate(n), e, ref, ext, basis, tried)

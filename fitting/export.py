@@ -355,11 +355,10 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                         for k in keys)
         what = ("median |log10(model/measured)| on the DMA data" if c.basis == "data"
                 else "median deviation from the full fit over the data window")
-        accurate = max(c.errors[k] / c.reference[k] for k in keys) <= compact.TOLERANCE
         verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and is smooth" if c.met else
                    f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but is NOT smooth (no series of at "
                    f"most {cap} terms over {math.log10(wdata[1] / wdata[0]):.0f} decades is free of ripple)"
-                   if accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the best "
+                   if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the best "
                    f"of at most {cap} terms)")
         note = (f"compact: {len(c.series.times)} of {len(m.G)} terms ({what}: {acc}); it {verdict}; "
                 f"{c.extrema} loss-modulus extrema over the data window")

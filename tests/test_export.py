@@ -419,6 +419,21 @@ def test_shipped_lsdyna_six_cards_and_stated_accuracy(shipped, tmp_path):
     assert stated[1] < stated[0] / 3
 
 
+def test_compact_without_the_data_uses_the_recorded_errors(shipped, tmp_path, capsys):
+    """DMA files moved away: the compact series is held to the fit's recorded errors (its
+    deviation from the full fit), and the output says which basis and whether it held."""
+    _, d, table = shipped
+    path = _write(tmp_path, dict(d, fit=dict(d["fit"], inputs=[str(tmp_path / "moved.xls")])), "moved")
+    assert export_cli.main([path, "--format", "ansys", "--nu", "0.45", "--temperature", "K"]) == 0
+    out = capsys.readouterr().out
+    assert "median deviation from the full fit over the data window" in out
+    terms, *_ = read_back("ansys", str(tmp_path), "moved", "SI", "K")
+    assert len(terms[1]) <= 20
+    text = open(card_paths("ansys", str(tmp_path), "moved", "K")[0]).read()
+    assert "source DMA data: " + str(tmp_path / "moved.xls") in text
+    assert ("holds the full fit's accuracy" in text) != ("does NOT hold" in text)
+
+
 def test_fit_cli_table_law_keeps_the_fit_and_explains(tmp_path, capsys):
     out = tmp_path / "m.json"
     table = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_user_raw.csv")
