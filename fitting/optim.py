@@ -1,15 +1,15 @@
-"""Small solvers used by the fitting package: NNLS (numpy) and Levenberg-Marquardt (JAX).
+"""Small solvers used by the fitting package: NNLS (numpy), Levenberg-Marquardt (one rule,
+:func:`lm_decide`, driven by a jitted JAX loop or from the host) and covariances.
 
-Kept in one internal module so that the package depends on neither scipy nor the
-unmaintained jaxopt.
+Kept in one module so that the package depends on neither scipy nor the unmaintained jaxopt.
+JAX is imported only by what needs it (the jitted loop; steps on JAX arrays): the host
+driver, NNLS and covariances run in numpy, so ``vjax-export`` loads no JAX.
 """
 from __future__ import annotations
 
 import dataclasses
 from typing import Callable
 
-import jax
-import jax.numpy as jnp
 import numpy as np
 
 
@@ -52,24 +52,35 @@ def nnls(A, b, max_iter=None, tol=None):
     return x, float(np.linalg.norm(A @ x - b))
 
 
-@jax.tree_util.register_dataclass
 @dataclasses.dataclass(frozen=True)
 class LMSolution:
     """Result of :func:`levenberg_marquardt`: the parameters ``x``, the cost 0.5*||r||^2,
     the Jacobian at ``x``, the residual ``r``, ``iterations`` and ``converged``."""
 
-    x: jax.Array
-    cost: jax.Array
-    residual: jax.Array
-    jacobian: jax.Array
-    iterations: jax.Array
-    converged: jax.Array
+    x: object
+    cost: object
+    residual: object
+    jacobian: object
+    iterations: object
+    converged: object
+
+
+def _register():
+    """LMSolution as a JAX pytree (on first use of the jitted loop, which imports JAX)."""
+    import jax
+    if not getattr(_register, "done", False):
+        jax.tree_util.register_dataclass(LMSolution, data_fields=[f.name for f in dataclasses.fields(LMSolution)],
+                                         meta_fields=[])
+        _register.done = True
 
 
 def _xp(*arrays):
     """numpy for host values (the host driver's small problems: no JAX dispatch per
     operation), jax.numpy for JAX arrays and tracers."""
-    return np if all(isinstance(a, (np.ndarray, np.generic, float, int, bool)) for a in arrays) else jnp
+    if all(isinstance(a, (np.ndarray, np.generic, float, int, bool)) for a in arrays):
+        return np
+    import jax.numpy as jnp
+    return jnp
 
 
 def marquardt_step(J, r, lam, floor=1e-12, active=None):
@@ -126,6 +137,9 @@ def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: f
     The accept/damp/stop rule is :func:`lm_decide`; :func:`levenberg_marquardt_host` runs the
     same iteration on the host.
     """
+    import jax
+    import jax.numpy as jnp
+    _register()
     x0 = jnp.asarray(x0)
     act = jnp.ones_like(x0) if active is None else jnp.asarray(active, x0.dtype)
     if resid_jac is None:
