@@ -559,8 +559,8 @@ def _comsol(m: FEMMaterial, u: _Units):
     for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1):
         lines += [f'G_{i} {_num(u.p(gi))}{P} "branch {i} shear modulus"', f'tau_{i} {_num(ti)}[s] "branch {i} relaxation time"']
     params = "\n".join(lines) + "\n"
-    branches = (f"% vjax {_version()}: Viscoelasticity branches of {m.source or 'a material'}: branch number, shear "
-                f"modulus G_i [{u.stress}], relaxation time tau_i [s] (at T_ref; see the parameter file)\n"
+    branches = (head + f"\n% columns: branch number, shear modulus G_i [{u.stress}], relaxation time tau_i [s] "
+                "(at T_ref; shift law and bulk modulus in the parameter file)\n"
                 + "".join(f"{i} {_num(u.p(gi))} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
     return params, branches
 
