@@ -173,15 +173,16 @@ def levenberg_marquardt(fun: Callable, x0, args=(), max_iter: int = 200, xtol: f
 
 def levenberg_marquardt_host(resid_jac: Callable, x0, max_iter: int = 200, xtol: float = 1e-10,
                              ftol: float = 1e-12, floor: float = 1e-12, usable: Callable | None = None,
-                             on_accept: Callable | None = None, lam0: float = 1e-3):
+                             on_accept: Callable | None = None, lam0: float = 1e-3, start=None):
     """:func:`levenberg_marquardt` driven from Python, for residuals that are not one jitted
     function (the torque fit's bearing solves) or are small numpy problems (the compact FEM
     spectra). ``resid_jac(x) -> (r, J, aux)``; ``usable(aux)`` may reject a trial (e.g. a
     solve that did not converge); ``on_accept(iteration, cost, x, aux)`` is called after each
-    accepted step. Same steps (:func:`marquardt_step`) and rule (:func:`lm_decide`).
+    accepted step; ``start``: ``resid_jac(x0)`` when the caller has it already. Same steps
+    (:func:`marquardt_step`) and rule (:func:`lm_decide`).
     Returns ``(x, r, J, aux, cost, iterations, converged)``; the cost is 0.5 ||r||^2."""
     x = np.asarray(x0, float)
-    r, J, aux = resid_jac(x)
+    r, J, aux = resid_jac(x) if start is None else start
     r, J = np.asarray(r, float), np.asarray(J, float)
     c, lam, done, stuck, k = 0.5 * float(r @ r), lam0, False, False, 0
     while k < max_iter and not done:

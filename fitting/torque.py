@@ -495,7 +495,8 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     if polish > 0 and float(jnp.linalg.norm(2.0 * (J.T @ aux[0]) / Nt)) >= gtol:
         xl, _, _, (J, aux), _, k, _ = optim.levenberg_marquardt_host(
             resid_jac, np.asarray(x), max_iter=polish, ftol=1e-6, floor=1e-4, on_accept=accepted,
-            usable=lambda extra: usable(loss_grad(*extra)[0], extra[1]))
+            usable=lambda extra: usable(loss_grad(*extra)[0], extra[1]),
+            start=(np.asarray(aux[0], float), np.asarray(J, float), (J, aux)))   # Adam's best: no solve again
         x, loss, it = jnp.asarray(xl), float(jnp.sum(aux[0] ** 2) / Nt), it + k
         history += lm_log
     r, r_t, tq, ok = aux
