@@ -6,14 +6,17 @@
 >>> print(report.table())                                                      # doctest: +SKIP
 
 Modules: :mod:`fitting.dma` (readers), :mod:`fitting.master` (shift factors, WLF/Arrhenius),
-:mod:`fitting.prony` (Prony fit with free times, refinement), :mod:`fitting.spectrum` (smooth
-spectra: fixed times, penalty chosen by GCV; the loss-modulus extrema counter),
+:mod:`fitting.rawfile` (what the readers share), :mod:`fitting.prony` (Prony fit with free times,
+refinement), :mod:`fitting.spectrum` (smooth spectra: fixed times, penalty chosen by GCV),
+:mod:`fitting.evaluate` (fits evaluated in numpy: errors, loss-modulus extrema, G/E),
+:mod:`fitting.optim` (NNLS, the Levenberg-Marquardt rule and its two drivers, covariances),
 :mod:`fitting.relaxation` (relaxation data E(t)), :mod:`fitting.calibration` (the whole chain),
 :mod:`fitting.io` (material JSON), :mod:`fitting.files` (atomic writes),
 :mod:`fitting.plots` (and :mod:`fitting.figures`, a calibration's set of figures, drawn in
 parallel by the command line), :mod:`fitting.cli` (``vjax-fit``), :mod:`fitting.eplexor` (Netzsch
 Eplexor .xls), :mod:`fitting.export` and :mod:`fitting.export_cli` (``vjax-export``: Abaqus,
-ANSYS, LS-DYNA, COMSOL), :mod:`fitting.jax_cache` (the tools' compilation cache).
+ANSYS, LS-DYNA, COMSOL; docs/fem_export.md), :mod:`fitting.compact` (the fewest-term series
+for FEM codes), :mod:`fitting.jax_cache` (the tools' compilation cache).
 """
 import importlib
 

@@ -30,6 +30,7 @@ from vjax import _checks
 from vjax.material import Material
 
 from . import dma, evaluate, io, master, prony, relaxation, spectrum
+from .evaluate import tensile_over_shear
 
 __all__ = ["calibrate", "Report"]
 
@@ -78,6 +79,7 @@ class Report:
     alternatives: dict = dataclasses.field(default_factory=dict)
     smoothing: dict | None = None
     laws: dict = dataclasses.field(default_factory=dict)
+    window: tuple | None = None
 
     def _law_line(self, law, params, sigma) -> str:
         return f"{law}  " + "  ".join(
@@ -121,13 +123,10 @@ class Report:
                "data_kind": self.kind, "domain": self.domain, "points": self.n_points, **fit_extra}
         if self.smoothing:
             fit["smoothing"] = self.smoothing
+        if self.window:
+            fit["window_rad_s"] = list(self.window)     # reduced rates of the data at T_ref (fitting.export)
         io.save_material(path, material, shift, modulus=modulus, uncertainty=self.uncertainty, fit=fit,
                          shift_alternatives=self.alternatives)
-
-
-def tensile_over_shear(nu) -> float:
-    """E / G = 2 (1 + nu) for an isotropic material with constant Poisson ratio ``nu``."""
-    return 2.0 * (1.0 + float(nu))
 
 
 def convert_modulus(material: Material, factor) -> Material:
@@ -147,7 +146,7 @@ def _free_fits(table, start, nu, densities, max_iter):
     starts = [(d,) + prony.fit_master(wr, table.storage, table.loss, density=d) for d in sorted(densities)]
     # one padded size for all candidates: a single compilation per law
     opts = dict(max_iter=max_iter, weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=TAU_MARGIN,
-                pad_terms=prony._pad_size(max(len(s[2]) for s in starts)))
+                pad_terms=prony.pad_size(max(len(s[2]) for s in starts)))
     # BIC of the unweighted log residuals (the weighted one would let the down-weighted loss
     # go unresolved and pick too few terms); the shift parameters are common to all candidates.
     # Densities in increasing order; stop once the BIC has risen twice in a row.
@@ -282,7 +281,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     for name in CLOSED_FORM:
         if name != chosen:
             f = fits[name]
-            alternatives[name] = dict(io._shift_to_dict(f.shift), sigma=dict(_law_sigma(f.sigma)),
+            alternatives[name] = dict(io.shift_to_dict(f.shift), sigma=dict(_law_sigma(f.sigma)),
                                       errors=table.errors(f.material, f.shift), bic=f.bic,
                                       delta_log10_aT_vs_table=_law_distance(f.shift, fits["table"].shift,
                                                                             table.temperatures))
@@ -293,7 +292,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         mat = convert_modulus(mat, f)
         sigma = {k: (v * f if k == "E0" else [x * f for x in v] if k == "moduli" else v) for k, v in sigma.items()}
         out_kind = "E"
-    shift_params = io._shift_to_dict(shift)
+    shift_params = io.shift_to_dict(shift)
     shift_params.pop("law")
     report = Report(terms=fit.terms, law=chosen, shift_params=shift_params, uncertainty=sigma, errors=errors,
                     candidates=[{"law": k, "bic": v.bic, "rms": v.rms, "terms": v.terms} for k, v in fits.items()],
@@ -301,7 +300,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
                     wall_time=0.0, iterations=fit.iterations, converged=fit.converged, dropped=table.dropped,
                     data_shift=fits["table"].shift, criterion=crit, method=method, domain=table.domain,
                     alternatives=alternatives, smoothing=smoothing,
-                    laws={k: fits[k].shift for k in CLOSED_FORM})
+                    laws={k: fits[k].shift for k in CLOSED_FORM}, window=(float(wr.min()), float(wr.max())))
     if out_dir is not None:
         os.makedirs(out_dir, exist_ok=True)
         jpath = os.path.join(out_dir, f"{stem}.json")

@@ -68,7 +68,8 @@ def _export(args, out) -> list:
     from . import export
     m = export.load(out, nu=args.nu, bulk_modulus=args.bulk_modulus)
     stem = os.path.splitext(os.path.basename(out))[0]
-    return export.export(m, args.export, os.path.dirname(out), stem, units=args.units, temperature=args.temperature)
+    return export_cli.run(m, args.export, os.path.dirname(out), stem, args,
+                          max_terms=None)
 
 
 def main(argv=None) -> int:
@@ -110,7 +111,7 @@ def main(argv=None) -> int:
                                     drop_nonpositive=args.drop_nonpositive, method=args.method,
                                     max_terms=args.max_terms)
         kind = "E" if (rep.kind == "E" or not args.shear) else "G"
-        rep.save(out, mat, shift, kind, inputs=list(args.inputs))
+        rep.save(out, mat, shift, kind, inputs=[os.path.abspath(p) for p in args.inputs])
         written = [out]
         if not args.no_plots:
             from . import dma, relaxation
@@ -119,7 +120,8 @@ def main(argv=None) -> int:
             stem = os.path.splitext(out)[0]
             fit_mat = mat
             if rep.kind == "G" and kind == "E":  # plot against the data's own modulus
-                from .calibration import convert_modulus, tensile_over_shear
+                from .calibration import convert_modulus
+                from .evaluate import tensile_over_shear
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += figures.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
                                         rep.data_shift, rep.laws)

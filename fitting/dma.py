@@ -38,16 +38,9 @@ import re
 
 import numpy as np
 
+from .rawfile import Block, DMAFormatError
+
 __all__ = ["DMATable", "DMAFormatError", "read", "read_file", "from_arrays"]
-
-
-class DMAFormatError(ValueError):
-    """A DMA file that cannot be read; the message names the file, the line and the problem."""
-
-    def __init__(self, path, line, problem):
-        self.path, self.line, self.problem = str(path), line, problem
-        where = f"{self.path}" + (f", line {line}" if line is not None else "")
-        super().__init__(f"{where}: {problem}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,8 +78,8 @@ class DMATable:
         return len(self.f)
 
     def errors(self, material, shift) -> dict:
-        """Errors of ``material`` with ``shift`` on these raw points (:func:`fitting.prony.raw_errors`)."""
-        from .prony import raw_errors
+        """Errors of ``material`` with ``shift`` on these raw points (:func:`fitting.evaluate.raw_errors`)."""
+        from .evaluate import raw_errors
         return raw_errors(material, shift, self)
 
     temperatures = property(lambda self: set_temperatures(self.T, self.set),
@@ -124,14 +117,14 @@ _TEMP_UNITS = {"c": 0.0, "°c": 0.0, "degc": 0.0, "celsius": 0.0,
                "k": -273.15, "kelvin": -273.15}
 
 
-def _clean_unit(u: str) -> str:
+def clean_unit(u: str) -> str:
     u = u.strip().strip("[]()").strip().lower()
     return u.replace("\ufffd", "°").replace("\xba", "°").replace(" ", "")
 
 
 def _lookup_unit(table, unit, path, line, col, what, give, known):
     """The cleaned unit and its entry in ``table``; a clear error for a missing or unknown unit."""
-    u = _clean_unit(unit)
+    u = clean_unit(unit)
     if u == "":
         raise DMAFormatError(path, line, f"column {col!r} has no unit (give {give})")
     if u not in table:
@@ -139,25 +132,25 @@ def _lookup_unit(table, unit, path, line, col, what, give, known):
     return u, table[u]
 
 
-def _modulus_scale(unit, path, line, col):
+def modulus_scale(unit, path, line, col):
     return _lookup_unit(_MODULUS_UNITS, unit, path, line, col, "modulus", "Pa, kPa, MPa or GPa",
                         "Pa, kPa, MPa, GPa, N/mm2, psi")[1]
 
 
-def _temp_offset(unit, path, line, col):
+def temp_offset(unit, path, line, col):
     return _lookup_unit(_TEMP_UNITS, unit, path, line, col, "temperature", "C or K", "C, K")[1]
 
 
 def _freq_kind(unit, name, path, line):
     u, _ = _lookup_unit(_FREQ_UNITS, unit, path, line, name, "frequency", "Hz or rad/s", "Hz, kHz, rad/s")
     kind, scale = _FREQ_UNITS[u]
-    if u == "1/s" and _canon_name(name) == "f":
+    if u == "1/s" and canon_name(name) == "f":
         kind = "f"  # "f [1/s]" is cycles per second
     return kind, scale
 
 
 # ---- column names -----------------------------------------------------------------------
-def _canon_name(name: str):
+def canon_name(name: str):
     """Map a column header (without unit) to 'f', 'omega', 'T', 'Tset', 'set', ('stor', kind),
     ('loss', kind), or None for columns we do not use."""
     if name.strip() == "t":
@@ -188,7 +181,7 @@ def _canon_name(name: str):
     return None
 
 
-_UNIT_IN_NAME = re.compile(r"^(?P<name>.*?)\s*[\[(](?P<unit>[^\[\]()]*)[\])]\s*$")
+UNIT_IN_NAME = re.compile(r"^(?P<name>.*?)\s*[\[(](?P<unit>[^\[\]()]*)[\])]\s*$")
 _TEMP_IN_FILENAME = re.compile(
     r"(?:^|[^a-z0-9])t_?(?P<a>[-+]?\d+(?:[.p]\d+)?)(?=$|[^0-9])"
     r"|(?P<b>[-+]?\d+(?:[.p]\d+)?)\s*_?(?:°|deg|o)?c(?=$|[^a-z])", re.I)
@@ -221,20 +214,6 @@ def _to_float(tok: str) -> float:
     if t.lower() in ("", "nan", "na", "n/a", "---", "--", "-nan"):
         return math.nan
     return float(t)
-
-
-@dataclasses.dataclass
-class _Block:
-    """Rows of one file (or one TRIOS step) before unit conversion."""
-    path: str
-    names: list          # header names (units removed)
-    units: list          # one unit per name ('' when none)
-    rows: list           # list of lists of float
-    lines: list          # 1-based line number of each row
-    header_line: int
-    T_nominal: float | None = None
-    set_hint: int | None = None
-    kind_hint: str | None = None
 
 
 def _parse_numeric_rows(path, lines, start, ncol, sep, footer_ok):
@@ -272,7 +251,7 @@ def _is_bad_number(t):
 
 def _looks_like_unit_row(tokens) -> bool:
     known = set(_MODULUS_UNITS) | set(_FREQ_UNITS) | set(_TEMP_UNITS) | {"-", "", "#", "s", "n", "rad", "1/mpa", "%"}
-    toks = [_clean_unit(t) for t in tokens]
+    toks = [clean_unit(t) for t in tokens]
     hits = sum(t in known for t in toks)
     return hits >= max(2, len(toks) // 2) and not any(_is_number(t) for t in toks if t not in ("-", ""))
 
@@ -285,7 +264,7 @@ def _is_number(t):
         return False
 
 
-def _blocks_from_file(path) -> list[_Block]:
+def blocks_from_file(path) -> list[Block]:
     with open(path, "rb") as fh:
         head = fh.read(4096)
     from . import eplexor
@@ -313,12 +292,12 @@ def _blocks_from_file(path) -> list[_Block]:
         else:
             units = []
             for j, n in enumerate(names):
-                m = _UNIT_IN_NAME.match(n)
+                m = UNIT_IN_NAME.match(n)
                 names[j], u = (m.group("name").strip(), m.group("unit")) if m else (n, "")
                 units.append(u)
             start, hdr = first + 1, first + 1
         rows, nums = _parse_numeric_rows(path, lines, start, len(names), sep, footer_ok=False)
-        return [_Block(str(path), names, units, rows, nums, hdr)]
+        return [Block(str(path), names, units, rows, nums, hdr)]
     # whitespace-separated: header row, unit row ([..] tokens), numbers
     names = head.split()
     second = next((i for i in range(first + 1, len(lines)) if lines[i].strip()), None)
@@ -335,10 +314,10 @@ def _blocks_from_file(path) -> list[_Block]:
     else:
         raise DMAFormatError(path, second + 1, f"cannot read the unit row: {lines[second].strip()[:60]!r}")
     rows, nums = _parse_numeric_rows(path, lines, start + 1, len(names), None, footer_ok=True)
-    return [_Block(str(path), names, units, rows, nums, hdr)]
+    return [Block(str(path), names, units, rows, nums, hdr)]
 
 
-def _trios_blocks(path, lines) -> list[_Block]:
+def _trios_blocks(path, lines) -> list[Block]:
     text = "\n".join(lines[:120]).lower()
     tensile = any(w in text for w in ("tension", "tensile", "film", "dma 850", "rsa", "3-point", "cantilever"))
     kind = "E" if tensile else "G"
@@ -369,7 +348,7 @@ def _trios_blocks(path, lines) -> list[_Block]:
                 # TRIOS rows hold hex status bits and dates: convert only the columns we use
                 row = [math.nan] * len(names)
                 for c, nm in enumerate(names):
-                    if _canon_name(nm) is not None:
+                    if canon_name(nm) is not None:
                         try:
                             row[c] = _to_float(vals[c])
                         except ValueError:
@@ -380,7 +359,7 @@ def _trios_blocks(path, lines) -> list[_Block]:
         if rows:
             if len(units) < len(names):
                 units = units + [""] * (len(names) - len(units))
-            blocks.append(_Block(str(path), names, units[:len(names)], rows, nums, hdr,
+            blocks.append(Block(str(path), names, units[:len(names)], rows, nums, hdr,
                                  T_nominal=T_nom, set_hint=step, kind_hint=kind))
             step += 1
         i = j
@@ -390,11 +369,11 @@ def _trios_blocks(path, lines) -> list[_Block]:
 
 
 # ---- block -> columns -------------------------------------------------------------------
-def _convert(block: _Block, kind_override):
+def _convert(block: Block, kind_override):
     path = block.path
     cols = {}
     for j, (n, u) in enumerate(zip(block.names, block.units)):
-        c = _canon_name(n)
+        c = canon_name(n)
         if c is None:
             continue
         key = c if isinstance(c, str) else c[0]
@@ -423,7 +402,7 @@ def _convert(block: _Block, kind_override):
     out = {}
     for k in ("stor", "loss"):
         j, n, u, _ = cols[k]
-        out[k] = data[:, j] * _modulus_scale(u, path, line, n)
+        out[k] = data[:, j] * modulus_scale(u, path, line, n)
     fk = "f" if "f" in cols else "omega"
     j, n, u, _ = cols[fk]
     which, scale = _freq_kind(u, n, path, line)
@@ -432,7 +411,7 @@ def _convert(block: _Block, kind_override):
     for k in ("T", "Tset"):
         if k in cols:
             j, n, u, _ = cols[k]
-            out[k] = data[:, j] + _temp_offset(u, path, line, n)
+            out[k] = data[:, j] + temp_offset(u, path, line, n)
     if "set" in cols:
         out["set"] = data[:, cols["set"][0]]
     # NaN checks, with the line of the first offender
@@ -454,7 +433,7 @@ def read_file(path, kind=None, drop_nonpositive=False, T=None):
         raise DMAFormatError(path, None, "no such file")
     T_name = temperature_from_filename(path) if T is None else float(T)
     sets = []
-    for block in _blocks_from_file(path):
+    for block in blocks_from_file(path):
         cols, k, lines = _convert(block, kind)
         n = len(lines)
         if n == 0:
@@ -475,7 +454,7 @@ def read_file(path, kind=None, drop_nonpositive=False, T=None):
                 groups.append((m, round(float(np.mean(src)), 1)))
         elif "Tset" in cols or "T" in cols:
             src = cols["Tset"] if "Tset" in cols else Tm
-            groups = [(m, round(float(np.mean(src[m])), 1)) for m in _cluster(src)]
+            groups = [(m, round(float(np.mean(src[m])), 1)) for m in cluster(src)]
         else:
             raise DMAFormatError(path, block.header_line,
                                  "no temperature: add a T column or put it in the file name (e.g. T85.txt)")
@@ -485,7 +464,7 @@ def read_file(path, kind=None, drop_nonpositive=False, T=None):
     return sets
 
 
-def _cluster(T, tol=1.0):
+def cluster(T, tol=1.0):
     """Masks of temperature clusters: sorted values closer than ``tol`` (C) share a set."""
     order = np.argsort(T, kind="stable")
     Ts = T[order]
@@ -498,7 +477,7 @@ def _cluster(T, tol=1.0):
     return masks
 
 
-def _expand(paths) -> list[str]:
+def expand(paths) -> list[str]:
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
     out = []
@@ -536,7 +515,7 @@ def read(paths, kind=None, drop_nonpositive=False) -> DMATable:
     """
     if kind is not None and kind not in ("E", "G"):
         raise ValueError(f"kind must be 'E' or 'G', got {kind!r}")
-    files = _expand(paths)
+    files = expand(paths)
     if not files:
         raise ValueError("no input files")
     sets = []

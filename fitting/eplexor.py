@@ -23,6 +23,8 @@ import os
 
 import numpy as np
 
+from .rawfile import Block, DMAFormatError
+
 __all__ = ["is_ole2", "blocks", "shift_list"]
 
 OLE2_MAGIC = b"\xd0\xcf\x11\xe0\xa1\xb1\x1a\xe1"       # legacy Excel (.xls) container
@@ -34,7 +36,6 @@ def is_ole2(head: bytes) -> bool:
 
 
 def _book(path):
-    from .dma import DMAFormatError
     try:
         import xlrd
     except ImportError:
@@ -46,7 +47,6 @@ def _book(path):
 
 
 def _sheet(book, name, path):
-    from .dma import DMAFormatError
     if name not in book.sheet_names():
         raise DMAFormatError(path, None, f"Excel file without a sheet {name!r} (sheets: {book.sheet_names()}); "
                                          "not a Netzsch Eplexor export")
@@ -65,7 +65,6 @@ def _number(v) -> float:
 def shift_list(path):
     """The "Shiftlist" sheet of an Eplexor master-curve file: ``(T, log10_aT, T_ref, wlf)`` with
     temperatures in C and ``wlf`` = {"C1", "C2"} (None when the sheet has none)."""
-    from .dma import DMAFormatError
     sh = _sheet(_book(path), "Shiftlist", path)
     try:
         T_ref = float(str(sh.cell_value(0, 1)).replace("°C", "").replace("\ufffdC", "").strip())
@@ -96,7 +95,6 @@ def shift_list(path):
 def _header(book, path):
     """(log10 of the measured frequencies in Hz, soak time in s or None) from the "Data header"
     sheet: 'Frequency range:' fmin, fmax; 'Frequency increment:' points per decade; 'Soak time:'."""
-    from .dma import DMAFormatError
     h = _sheet(book, "Data header", path)
     for r in range(h.nrows - 1):
         names = [str(v).strip().lower() for v in h.row_values(r)]
@@ -112,7 +110,6 @@ def _header(book, path):
 
 def _master_sets(book, path, col, data, rows):
     """Set index and temperature per row of a master-curve file (see the module docstring)."""
-    from .dma import DMAFormatError
     T_list, a_list, _, _ = shift_list(path)
     if "Time" not in col:
         raise DMAFormatError(path, 1, "master-curve file without a 'Time' column: cannot tell its sweeps apart")
@@ -153,8 +150,7 @@ def _master_sets(book, path, col, data, rows):
 
 
 def blocks(path) -> list:
-    """The :class:`fitting.dma._Block` of an Eplexor .xls file (raw or master curve)."""
-    from .dma import DMAFormatError, _Block
+    """The :class:`fitting.rawfile.Block` of an Eplexor .xls file (raw or master curve)."""
     book = _book(path)
     sh = _sheet(book, "Exported Data", path)
     if sh.nrows < 3:
@@ -190,7 +186,7 @@ def blocks(path) -> list:
         set_id = np.concatenate([[0], np.cumsum(np.diff(f) < 0)])       # a sweep ends where f drops
     names, units = names + ["Set"], units + ["-"]
     data = np.column_stack([data, set_id])
-    return [_Block(os.fspath(path), names, units, data.tolist(), lines, 2)]
+    return [Block(os.fspath(path), names, units, data.tolist(), lines, 2)]
 
 
 def _is_number(v) -> bool:

@@ -19,14 +19,16 @@ import math
 
 import numpy as np
 
-__all__ = ["log10_aT", "modulus", "loss", "relaxation"]
+_SAMPLES = 4096      # loss-modulus samples of loss_extrema: >= 100 per decade over 40 decades
+
+__all__ = ["count_extrema", "loss_extrema", "log10_aT", "table_log10_aT", "modulus", "loss", "relaxation", "raw_errors", "errors_at", "tensile_over_shear"]
 
 
 def _float(a):
     return np.asarray(a, dtype=float)
 
 
-def _table_log10_aT(x, y, T):
+def table_log10_aT(x, y, T):
     """:meth:`fitting.master.ShiftTable.log10_aT` in numpy: linear between the temperatures
     ``x``, linearly extrapolated from the two end points beyond them."""
     if x.shape[0] == 1:
@@ -48,11 +50,9 @@ def log10_aT(law, T) -> np.ndarray:
     """log10 a_T of the shift law ``law`` at the temperatures ``T`` (C), a float array. A WLF
     law refuses temperatures at or below its asymptote, as its own method does."""
     from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
-
-    from .master import ShiftTable
     T = _float(T)
-    if isinstance(law, ShiftTable):
-        return _table_log10_aT(_float(law.T), _float(law.values), T)
+    if hasattr(law, "values") and hasattr(law, "T"):     # a fitting.master.ShiftTable (not imported:
+        return table_log10_aT(_float(law.T), _float(law.values), T)   # master imports this module)
     if isinstance(law, WLF):
         C1, C2, T_ref = float(law.C1), float(law.C2), float(law.T_ref)
         if np.any(T - T_ref <= -C2):
@@ -84,3 +84,46 @@ def relaxation(material, t) -> np.ndarray:
     """Relaxation modulus E(t) (Pa) of the Prony material at times ``t`` (s)."""
     return float(material.E0) + np.sum(_float(material.moduli) * np.exp(-_float(t)[..., None] / _float(material.times)),
                                        axis=-1)
+
+
+def raw_errors(material, shift, table) -> dict:
+    """Errors on the raw unshifted points of a :class:`fitting.dma.DMATable`: median and 90th
+    percentile of |log10(pred/meas)| for storage and loss separately, plus the rms of all
+    log10 residuals (:func:`fitting.prony.log_residual` is the JAX version for derivatives)."""
+    return errors_at(material, table.omega * 10.0 ** log10_aT(shift, table.T), table.storage, table.loss)
+
+
+def errors_at(material, omega_r, storage, loss) -> dict:
+    """:func:`raw_errors` of points at reduced angular frequencies ``omega_r`` (rad/s)."""
+    E = modulus(material, omega_r)
+    r = np.concatenate([np.log10(E.real / storage), np.log10(E.imag / loss)])
+    n = len(omega_r)
+    rs, rl = np.abs(r[:n]), np.abs(r[n:])
+    return {"storage_median": float(np.median(rs)), "storage_p90": float(np.percentile(rs, 90)),
+            "loss_median": float(np.median(rl)), "loss_p90": float(np.percentile(rl, 90)),
+            "rms": float(np.sqrt(np.mean(r ** 2)))}
+
+
+def tensile_over_shear(nu) -> float:
+    """E / G = 2 (1 + nu) for an isotropic material with constant Poisson ratio ``nu``: the
+    package's one conversion between tensile and shear moduli."""
+    return 2.0 * (1.0 + float(nu))
+
+
+def count_extrema(y) -> int:
+    """Number of interior local extrema of the sampled curve ``y`` (sign changes of its
+    differences, exact plateaus skipped)."""
+    d = np.sign(np.diff(np.asarray(y, float)))
+    d = d[d != 0]
+    return int(np.count_nonzero(d[1:] != d[:-1]))
+
+
+def loss_extrema(material, omega_min: float, omega_max: float) -> int:
+    """Local extrema of the loss modulus E''(omega) of ``material`` between ``omega_min`` and
+    ``omega_max`` (rad/s, reduced), sampled at 4096 log-spaced points (>= 100 per decade up
+    to 40 decades; more beyond)."""
+    if not (0 < omega_min < omega_max):
+        raise ValueError(f"need 0 < omega_min < omega_max, got {omega_min!r}, {omega_max!r}")
+    decades = math.log10(omega_max / omega_min)
+    n = _SAMPLES if decades <= 40 else int(100 * decades) + 1
+    return count_extrema(loss(material, 10.0 ** np.linspace(math.log10(omega_min), math.log10(omega_max), n)))

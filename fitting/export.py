@@ -1,61 +1,55 @@
 """Export a fitted material to finite-element codes: Abaqus, ANSYS, LS-DYNA and COMSOL.
 
 A vjax material is one relaxation modulus, tensile E(t) = E0 + sum_k E_k exp(-t/tau_k) (or
-shear G(t) when the JSON says ``"modulus": "G"``), with a shift law log10 a_T(T). FEM codes
-want an isotropic split into a shear and a bulk part (docs/theory.md, Eq. 1.43-1.44 for the
-Prony series):
+shear G(t) when the JSON says ``"modulus": "G"``), with a shift law log10 a_T(T), a_T > 1
+below T_ref (relaxation times at T are a_T tau_k). FEM codes want an isotropic split:
 
-* shear: G(t) = E(t) / (2 (1 + nu)), i.e. G_inf = E0 / (2 (1 + nu)), G_k = E_k / (2 (1 + nu)),
-  same relaxation times tau_k (for a shear material the series is taken as it is);
-* bulk: an elastic bulk modulus K, either given (``bulk_modulus``) or from the instantaneous
-  tensile modulus and nu: K = E_g / (3 (1 - 2 nu)), E_g = E0 + sum_k E_k (for a shear
-  material K = 2 G_g (1 + nu) / (3 (1 - 2 nu))). It must be finite: FEM elements reject
-  nu = 0.5 (K infinite; the stiffness matrix is singular without a hybrid/mixed formulation),
-  so nu < 0.5 or K must be given. With K from nu, uniaxial relaxation equals E(t) at t = 0
-  exactly and within 1 - 9 K G(t) / ((3 K + G(t)) E(t)) later (small when K >> G).
+* shear: G(t) = E(t) / (2 (1 + nu)) (:func:`fitting.evaluate.tensile_over_shear`), same
+  relaxation times; for a shear material the series is taken as it is;
+* bulk: an elastic bulk modulus K, given (``bulk_modulus``) or K = E_g / (3 (1 - 2 nu)) from
+  the instantaneous tensile modulus E_g = E0 + sum E_k. It must be finite (nu < 0.5): FEM
+  elements reject an infinite K.
 
-Shift law: WLF log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref) or Arrhenius
-ln a_T = (Ea / R) (1/T - 1/T_ref) (T in K), a_T > 1 below T_ref: relaxation times at T are
-a_T tau_k. A table of shift factors has no FEM equivalent: :func:`load` refuses it and names
-the closed-form alternative the material JSON carries, if any (``shift_alternatives``).
+Each code's documented formulas, and how vjax' (G_inf, G_i, tau_i, K, C1, C2 / Ea, T_ref)
+fill its fields (docs/fem_export.md derives and cites them; :func:`evaluate_card` applies
+them to a written file):
 
-Formats (what each file holds, and the manual pages followed):
+============ ======================================================= ============================================
+code         relaxation function and shift, as documented           fields written
+============ ======================================================= ============================================
+Abaqus       g_R(t) = 1 - sum g_i (1 - exp(-t/tau_i)), G = G_0 g_R;  ``*ELASTIC, MODULI=INSTANTANEOUS`` E_g, nu_g;
+             reduced time d xi = dt / A, WLF                         ``*VISCOELASTIC, TIME=PRONY`` g_i = G_i/G_g,
+             log10 A = -C1 (th - th0)/(C2 + th - th0); Arrhenius     k_i = 0, tau_i; ``*TRS`` th0, C1, C2 (A = a_T)
+             ln A = (E0/R)(1/(th - thZ) - 1/(th0 - thZ))             or th0, Ea with *PHYSICAL CONSTANTS R, thZ
+ANSYS        G(t) = G_0 (a_inf + sum a_i exp(-t/tau_i)),             ``MP,EX/NUXY`` instantaneous; ``TB,PRONY,,,n,
+             a_inf = 1 - sum a_i; WLF log10 A as Abaqus; TN          SHEAR`` a_i = G_i/G_g, tau_i; ``TB,SHIFT`` WLF
+             (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R, 0;
+             ln A = H/R (1/T - 1/Tr), T absolute via TOFFST          ``TOFFST,273.15`` with temperatures in C
+LS-DYNA      G(t) = sum_i GI exp(-BETAI t) (the long-term modulus    ``*MAT_GENERAL_VISCOELASTIC``: RO, BULK = K,
+             is a term with BETAI = 0); reduced time t' = int Phi dt TREF = T_ref, A = -C1 ln 10, B = C2 (WLF) or
+             Phi = exp(-A (T - TREF)/(B + T - TREF)) (WLF),          A = Ea/R, B = 0 (Arrhenius, T in K); cards
+             Phi = exp(-A (1/T - 1/TREF)) when B = 0 (Arrhenius)     GI, BETAI = 1/tau_i (G_inf: BETAI = 0)
+COMSOL       G(t) = G_inf + sum G_m exp(-t/tau_m); WLF               parameter file (T_ref, C1, C2 or Q, K, G_inf,
+             log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref),           G_i, tau_i, rho with units) and branch file
+             Arrhenius a_T = exp((Q/R)(1/T - 1/T_ref))               (branch, G_i, tau_i)
+============ ======================================================= ============================================
 
-* **Abaqus** (``.inp`` include; Abaqus Keywords Reference *ELASTIC, *VISCOELASTIC, *TRS and
-  Analysis User's Guide "Time domain viscoelasticity", abaqus-docs.mit.edu/2017/English/
-  SIMACAEKEYRefMap/simakey-r-trs.htm and SIMACAEMATRefMap/simamat-c-timevisco.htm):
-  ``*ELASTIC, MODULI=INSTANTANEOUS`` with the instantaneous E_g and nu_g of (G_g, K);
-  ``*VISCOELASTIC, TIME=PRONY`` lines g_i, k_i, tau_i with g_i = G_i / G_g (normalized by
-  the instantaneous shear modulus) and k_i = 0 (elastic bulk); ``*TRS, DEFINITION=WLF``
-  theta_0, C1, C2 with Abaqus' log10 A = -C1 (theta - theta_0) / (C2 + theta - theta_0),
-  reduced time d xi = dt / A: A is a_T, so C1, C2 keep vjax' (positive) signs; or
-  ``*TRS, DEFINITION=ARRHENIUS`` theta_0, E0 (activation energy) with R and absolute zero
-  from ``*PHYSICAL CONSTANTS`` (written as a comment: it is model data). A commented
-  ``*HYPERELASTIC, NEO HOOKE`` alternative gives C10 = G_g / 2, D1 = 2 / K.
-* **ANSYS** (APDL commands; Command Reference TB, TBDATA, MP, TOFFST, Material Reference
-  "Viscoelasticity" / "Shift functions", ANSYS 18.2 help Hlp_C_TB.html): ``MP,EX`` and
-  ``MP,NUXY`` instantaneous, ``TB,PRONY,mat,1,n,SHEAR`` with TBDATA pairs a_i, tau_i,
-  a_i = G_i / G_g (relative moduli; no BULK table: the bulk response is elastic);
-  ``TB,SHIFT,mat,1,3,WLF`` with TBDATA Tr, C1, C2, or ``TB,SHIFT,mat,1,3,TN``
-  (Tool-Narayanaswamy without fictive temperatures is Arrhenius) with Tr, H/R = Ea/R (K), 0,
-  and ``TOFFST,273.15`` when temperatures are in C.
-* **LS-DYNA** (Keyword User's Manual vol. II, *MAT_GENERAL_VISCOELASTIC = *MAT_076):
-  long-format cards (``+`` after the keyword, 20-character fields so that 13 significant
-  digits fit): MID, RO, BULK, PCF, EF, TREF, A, B / LCID, NT, BSTART, TRAMP, ... / one card
-  per term GI, BETAI = 1 / tau_i, KI, BETAKI; the long-term G_inf is a term with BETAI = 0;
-  BULK = K; TREF, A = C1, B = C2 (WLF only: MAT_076 has no Arrhenius, refused). RO is 0 in
-  the file: set the density. Older LS-DYNA versions read at most 6 term cards.
-* **COMSOL** (Structural Mechanics User's Guide, Viscoelasticity node, generalized Maxwell,
-  doc.comsol.com/5.4/doc/com.comsol.help.sme/sme_ug_solid.07.13.html): a parameter file for
-  Parameters > Load from File (``name value[unit] "description"``: T_ref, C1, C2 or Q,
-  G_inf (long-term shear modulus), K, G_i, tau_i) and a branch file for the Viscoelasticity
-  table's Load from File (three space-separated columns: branch number, shear modulus,
-  relaxation time). COMSOL's shift functions: WLF as above, Arrhenius
-  a_T = exp((Q/R)(1/T - 1/T_ref)).
+LS-DYNA's Phi multiplies the time step (t' = int Phi dt) where Abaqus divides by A: Phi =
+1/a_T. With its documented Phi = exp(-A (T - TREF)/(B + T - TREF)) and vjax' ln a_T =
+-C1 ln(10) (T - T_ref)/(C2 + T - T_ref), the constants are A = -C1 ln 10 (a negative number;
+writing A = C1 would shift by ln instead of log10 and in the wrong direction) and B = C2.
+Its keyword reads at most six GI/BETAI cards, G_inf included (:data:`CARD_LIMIT`).
 
-Units: ``"SI"`` (Pa, s, J/mol) or ``"mm-N-s-MPa"`` (MPa, s, mJ/mol); temperatures in K
-(``temperature="K"``, the default: LS-DYNA wants TREF > 0, Arrhenius laws want absolute
-temperature) or C. Numbers are written with 15 significant digits (13 on LS-DYNA cards).
+Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
+terms, at most 20, whose medians on the DMA data stay within 1.5x of the full fit's. A code
+with a card limit gets the best series of that many terms over the user's working window
+(``window``, default the data's): a refit, never a truncation, whose accuracy is printed and
+written into the file. The temperature scale has no default (``temperature='K'`` or ``'C'``,
+also in the file names); the density (``density``, kg/m^3) is written where each code wants
+it and LS-DYNA's RO is refused without it. Units: ``"SI"`` (Pa, s, kg/m^3, J/mol) or
+``"mm-N-s-MPa"`` (MPa, s, t/mm^3, mJ/mol). Every header names the source DMA files, the fit's
+accuracy and the vjax version. Files are rendered before the first is written and each is
+written atomically: a refusal leaves nothing behind.
 """
 from __future__ import annotations
 
@@ -63,19 +57,26 @@ import dataclasses
 import json
 import math
 import os
+import re
 
 import numpy as np
 
+from . import compact, evaluate
+from .evaluate import tensile_over_shear
 from .files import write_atomic
 
-__all__ = ["FEMMaterial", "FORMATS", "UNITS", "load", "split", "export", "render", "parse_formats", "check_terms"]
+__all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
+           "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name", "data_points"]
 
 FORMATS = ("abaqus", "ansys", "lsdyna", "comsol")
-UNITS = {"SI": (1.0, "Pa", "J/mol"), "mm-N-s-MPa": (1e-6, "MPa", "mJ/mol")}   # Pa -> unit, names
+# output unit system -> (Pa -> stress unit, stress name, energy name, kg/m^3 -> density unit, density name)
+UNITS = {"SI": (1.0, "Pa", "J/mol", 1.0, "kg/m^3"), "mm-N-s-MPa": (1e-6, "MPa", "mJ/mol", 1e-12, "t/mm^3")}
+TEMPERATURES = {"K": "K", "C": "degC"}         # --temperature -> the tag in file names
+CARD_LIMIT = {"lsdyna": 6}     # GI/BETAI cards the keyword reads, the long-term modulus included
 GAS_CONSTANT = 8.314462618     # J/(mol K), as vjax.material (not imported: keeps this module JAX-free)
 KELVIN = 273.15
-SUFFIX = {"abaqus": "_abaqus.inp", "ansys": "_ansys.mac", "lsdyna": "_lsdyna.k",
-          "comsol": ("_comsol_parameters.txt", "_comsol_branches.txt")}
+LN10 = math.log(10.0)
+EXTENSION = {"abaqus": ".inp", "ansys": ".mac", "lsdyna": ".k", "comsol": ("_parameters.txt", "_branches.txt")}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -84,8 +85,11 @@ class FEMMaterial:
 
     G_inf: long-term shear modulus (Pa); G: branch shear moduli (Pa); tau: relaxation times
     (s); K: elastic bulk modulus (Pa); law: 'WLF' or 'Arrhenius' with ``shift`` = {C1, C2}
-    or {Ea (J/mol)}; T_ref (C).
-    """
+    or {Ea (J/mol)}; T_ref (C). Provenance: ``source`` (material JSON), ``files`` (DMA
+    files of the fit), ``errors`` (the fit's errors on them, median |log10(model/measured)|),
+    ``window`` (reduced angular frequencies of the data at T_ref, rad/s, or None),
+    ``to_data`` (factor from this shear series to the data's modulus), ``domain``
+    ('frequency' or 'time' data), ``note`` (how the series was obtained, its accuracy)."""
 
     G_inf: float
     G: np.ndarray
@@ -95,6 +99,12 @@ class FEMMaterial:
     shift: dict
     T_ref: float
     source: str = ""
+    files: tuple = ()
+    errors: dict = dataclasses.field(default_factory=dict)
+    window: tuple | None = None
+    to_data: float = 1.0
+    domain: str = "frequency"
+    note: str = ""
 
     @property
     def G_g(self) -> float:
@@ -110,6 +120,24 @@ class FEMMaterial:
     def nu_g(self) -> float:
         """Instantaneous Poisson ratio (3 K - 2 G_g) / (2 (3 K + G_g))."""
         return (3.0 * self.K - 2.0 * self.G_g) / (2.0 * (3.0 * self.K + self.G_g))
+
+    @property
+    def series(self) -> compact.Series:
+        """The shear series as a :class:`fitting.compact.Series` (Pa, s)."""
+        return compact.Series(float(self.G_inf), np.asarray(self.G, float), np.asarray(self.tau, float))
+
+    def with_series(self, s: compact.Series, note: str) -> "FEMMaterial":
+        """This material with another shear series (bulk modulus and shift law kept)."""
+        return dataclasses.replace(self, G_inf=float(s.E0), G=np.asarray(s.moduli, float),
+                                   tau=np.asarray(s.times, float), note=note)
+
+    def log10_aT(self, T) -> np.ndarray:
+        """log10 a_T at temperatures ``T`` (C), vjax' convention (a_T > 1 below T_ref)."""
+        T = np.asarray(T, float)
+        if self.law == "WLF":
+            d = T - self.T_ref
+            return -self.shift["C1"] * d / (self.shift["C2"] + d)
+        return self.shift["Ea"] / (GAS_CONSTANT * LN10) * (1.0 / (T + KELVIN) - 1.0 / (self.T_ref + KELVIN))
 
 
 def _alternatives(d: dict) -> dict:
@@ -164,9 +192,8 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
                                                      and np.all(np.isfinite(Ek)) and np.all(np.isfinite(tau))):
         raise ValueError(f"{where}: moduli and times must be lists of equal length of finite numbers > 0")
     nu_given = nu is not None
-    if nu is None:
-        nu = float(d.get("nu", 0.5))      # with a given K, the material's nu (0.5 allowed) only turns E into G
-    nu = float(nu)
+    nu_material = float(d.get("nu", 0.5))
+    nu = nu_material if nu is None else float(nu)   # with a given K, nu (0.5 allowed) only turns E into G
     if bulk_modulus is not None and not -1.0 < nu <= 0.5:
         raise ValueError(f"nu must be a Poisson ratio -1 < nu <= 0.5, got {nu:g}")
     if bulk_modulus is None and not -1.0 < nu < 0.5:
@@ -178,15 +205,17 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
     modulus = d.get("modulus", "E")
     if modulus not in ("E", "G"):
         raise ValueError(f"{where}: modulus must be 'E' or 'G', got {modulus!r}")
-    to_shear = 1.0 / (2.0 * (1.0 + nu)) if modulus == "E" else 1.0
+    to_shear = 1.0 / tensile_over_shear(nu) if modulus == "E" else 1.0
     G_inf, G = E0 * to_shear, Ek * to_shear
     G_g = G_inf + G.sum()
     if bulk_modulus is not None:
         K = _positive("bulk modulus", bulk_modulus, "--bulk-modulus")
     else:
-        K = 2.0 * G_g * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu))
+        K = G_g * tensile_over_shear(nu) / (3.0 * (1.0 - 2.0 * nu))
     s = d.get("shift") or {}
     law = s.get("law")
+    fit = d.get("fit") if isinstance(d.get("fit"), dict) else {}
+    errors = dict(fit.get("errors") or {})
     if shift_law is not None and shift_law != law:
         alts = _alternatives(d)
         if shift_law not in alts:
@@ -197,6 +226,7 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
             raise ValueError(f"{where}: the {shift_law} alternative refers to T_ref = {s['T_ref']} C, the Prony "
                              f"series to {d['shift']['T_ref']} C")
         law = shift_law
+        errors = dict(s.get("errors") or {})
     if law == "table":
         alts = _alternatives(d)
         hint = ("; the fit also carries " + " and ".join(_describe(k, v) for k, v in alts.items())
@@ -214,18 +244,148 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
     T_ref = float(s.get("T_ref", math.nan))
     if not math.isfinite(T_ref):
         raise ValueError(f"{where}: shift law without a finite T_ref")
-    return FEMMaterial(float(G_inf), G, tau, float(K), law, shift, T_ref, source=where)
+    # the data's modulus: the series' own, unless shear data were turned into E at the fit
+    to_data = 1.0 / to_shear
+    if modulus == "E" and fit.get("data_kind") == "G":
+        to_data /= tensile_over_shear(nu_material)
+    files = tuple(str(f) for f in (fit.get("files") or fit.get("inputs") or ()))
+    window = fit.get("window_rad_s")
+    window = (float(window[0]), float(window[1])) if window and len(window) == 2 else None
+    return FEMMaterial(float(G_inf), G, tau, float(K), law, shift, T_ref, source=where, files=files,
+                       errors={k: float(v) for k, v in errors.items() if isinstance(v, (int, float))},
+                       window=window, to_data=to_data, domain=str(fit.get("domain", "frequency")),
+                       note=f"{len(G)} terms: the full fit")
 
 
 def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
-    """Read a material JSON file (:mod:`fitting.io` schema) and :func:`split` it."""
+    """Read a material JSON file (:mod:`fitting.io` schema) and :func:`split` it. DMA file
+    names recorded relative to the JSON's folder are resolved there."""
     path = os.fspath(path)
     with open(path, encoding="utf-8") as fh:
         try:
             d = json.load(fh)
         except json.JSONDecodeError as e:
             raise ValueError(f"{path}, line {e.lineno}: invalid JSON ({e.msg})") from None
-    return split(d, nu=nu, bulk_modulus=bulk_modulus, shift_law=shift_law, where=path)
+    m = split(d, nu=nu, bulk_modulus=bulk_modulus, shift_law=shift_law, where=path)
+    here = os.path.dirname(os.path.abspath(path))
+    files = tuple(f if os.path.isabs(f) or os.path.exists(f) else os.path.join(here, f) for f in m.files)
+    return dataclasses.replace(m, files=files)
+
+
+# ---- the series written: compact by default, refit to a code's card limit ----------------
+def data_points(m: FEMMaterial):
+    """(target points, errors_of) from the DMA files the fit names, or None when they are not
+    all readable. ``target``: reduced omega (rad/s), storage, loss of the points in this
+    series' own modulus; ``errors_of(series)``: the series' errors on the points."""
+    if not m.files or not all(os.path.exists(f) for f in m.files):
+        return None
+    from . import dma, relaxation
+    try:
+        if relaxation.is_relaxation(list(m.files)):
+            table = relaxation.read(list(m.files))
+            rate = 1.0 / table.t
+        else:
+            table = dma.read(list(m.files))
+            rate = table.omega
+    except (ValueError, OSError):
+        return None
+    wr = rate * 10.0 ** m.log10_aT(table.T)
+    if table.domain == "time":
+        target = ("time", 1.0 / wr, table.modulus / m.to_data)
+
+        def errors_of(s):
+            r = np.abs(np.log10(evaluate.relaxation(s.scaled(m.to_data), 1.0 / wr) / table.modulus))
+            return {"relaxation_median": float(np.median(r)), "relaxation_p90": float(np.percentile(r, 90))}
+    else:
+        target = (wr, table.storage / m.to_data, table.loss / m.to_data)
+
+        def errors_of(s):
+            return evaluate.errors_at(s.scaled(m.to_data), wr, table.storage, table.loss)
+    return target, errors_of, (float(wr.min()), float(wr.max()))
+
+
+def _window(m: FEMMaterial, data):
+    """The data's reduced window (rad/s): recorded in the JSON, else from the data, else from
+    the relaxation times (the smooth fit's grid spans the data plus a decade each side)."""
+    if m.window:
+        return m.window, "the data's (recorded with the fit)"
+    if data is not None:
+        return data[2], "the data's"
+    return (10.0 / float(m.tau.max()), 0.1 / float(m.tau.min())), "the relaxation times' less a decade each side"
+
+
+def _pct(v) -> str:
+    return f"{(10 ** v - 1) * 100:.1f}%"
+
+
+def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=None, messages=None) -> FEMMaterial:
+    """The series to write. ``terms``: 'compact' (default; :func:`fitting.compact.choose`,
+    at most ``max_terms`` or 20 terms) or 'full' (all terms, refused above ``max_terms``).
+    ``limit``: the code's card limit (:data:`CARD_LIMIT`, G_inf included): a series with more
+    terms is refit to ``limit - 1`` decaying terms over ``window`` = (t_min, t_max) (s,
+    reduced time at T_ref; default the data's window), its accuracy there in the note.
+    ``messages``: a list that gets one line per decision."""
+    if terms not in ("compact", "full"):
+        raise ValueError(f"terms must be 'compact' or 'full', got {terms!r}")
+    if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 1):
+        raise ValueError(f"max_terms must be an integer >= 1, got {max_terms!r}")
+    say = messages.append if messages is not None else (lambda s: None)
+    data = data_points(m) if terms == "compact" or limit else None
+    wdata, wsource = _window(m, data)
+    out = m
+    if terms == "full":
+        if max_terms is not None and len(m.G) > max_terms:
+            raise ValueError(f"the material has {len(m.G)} Prony terms, more than --max-terms {max_terms}; drop "
+                             f"--full-spectrum to write a compact refit of at most {max_terms} terms")
+    else:
+        cap = min(max_terms or compact.MAX_TERMS, len(m.G)) if len(m.G) else 1
+        if data is None and not m.errors and len(m.G) <= (max_terms or compact.MAX_TERMS):
+            say(f"{len(m.G)} terms kept as fitted (no DMA data or recorded errors to check a refit against)")
+            return m if not limit else prepare(m, "full", None, window, limit, messages)
+        if data is not None:
+            c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap)
+        elif m.errors:
+            c = compact.choose(m.series, wdata, reference=m.errors, max_terms=cap)
+        else:
+            raise ValueError(f"{m.source}: neither the DMA files nor the fit's errors are available, so the compact "
+                             "series cannot be checked against the fit's accuracy; give --full-spectrum, or keep "
+                             "the DMA files named in the JSON")
+        keys = [k for k in ("storage_median", "loss_median", "relaxation_median") if k in c.errors and k in c.reference]
+        acc = ", ".join(f"{k.split('_')[0]} {c.errors[k]:.4f} ({_pct(c.errors[k])}) vs {c.reference[k]:.4f}"
+                        for k in keys)
+        what = ("median |log10(model/measured)| on the DMA data" if c.basis == "data"
+                else "median deviation from the full fit over the data window")
+        verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and is smooth" if c.met else
+                   f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but is NOT smooth (no series of at "
+                   f"most {cap} terms over {math.log10(wdata[1] / wdata[0]):.0f} decades is free of ripple)"
+                   if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the best "
+                   f"of at most {cap} terms)")
+        note = (f"compact: {len(c.series.times)} of {len(m.G)} terms ({what}: {acc}); it {verdict}; "
+                f"{c.extrema} loss-modulus extrema over the data window")
+        out = m.with_series(c.series, note)
+        say(note)
+    if limit and len(out.G) > limit - 1:
+        if window is None:
+            w, wtxt = wdata, f"{wsource} window"
+        else:
+            t_min, t_max = (float(v) for v in window)
+            if not (0 < t_min < t_max and math.isfinite(t_max)):
+                raise ValueError(f"--window must be t_min,t_max with 0 < t_min < t_max (s), got {window!r}")
+            w, wtxt = (1.0 / t_max, 1.0 / t_min), f"the window {t_min:g} to {t_max:g} s"
+        s = compact.fit_terms(m.series, limit - 1, w)
+        dev = compact.deviation(s, m.series, w)
+        note = (f"refit to {limit - 1} terms + G_inf ({limit} cards, the keyword's limit) over {wtxt} at T_ref "
+                f"(reduced angular frequency {w[0]:.3g} to {w[1]:.3g} rad/s); deviation from the full fit there: "
+                f"storage median {dev['storage_median']:.4f} ({_pct(dev['storage_median'])}), max "
+                f"{dev['storage_max']:.4f}; loss median {dev['loss_median']:.4f} ({_pct(dev['loss_median'])}), max "
+                f"{dev['loss_max']:.4f} decades")
+        if data is not None and window is None:       # (a narrower window leaves points outside it)
+            e = data[1](s)
+            note += "; on the DMA data " + ", ".join(f"{k.split('_')[0]} median {e[k]:.4f}" for k in
+                                                    ("storage_median", "loss_median", "relaxation_median") if k in e)
+        out = m.with_series(s, note)
+        say(note)
+    return out
 
 
 # ---- rendering ----------------------------------------------------------------------------
@@ -233,40 +393,73 @@ def _num(v) -> str:
     return f"{float(v):.15g}"
 
 
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+        return version("vjax")
+    except Exception:       # not installed (a source checkout on sys.path)
+        return "unknown (not installed)"
+
+
 class _Units:
-    def __init__(self, units, temperature):
+    def __init__(self, units, temperature, density):
         if units not in UNITS:
             raise ValueError(f"units must be one of {list(UNITS)}, got {units!r}")
-        if temperature not in ("K", "C"):
-            raise ValueError(f"temperature must be 'K' or 'C', got {temperature!r}")
-        self.scale, self.stress, self.energy = UNITS[units]
+        if temperature not in TEMPERATURES:
+            raise ValueError("the temperature scale of the cards has no default: give temperature 'K' or 'C' "
+                             f"(--temperature K or --temperature C), got {temperature!r}")
+        if density is not None and not (math.isfinite(float(density)) and float(density) > 0):
+            raise ValueError(f"--density must be a finite number > 0 (kg/m^3), got {density!r}")
+        self.scale, self.stress, self.energy, self.rho_scale, self.rho_unit = UNITS[units]
         self.name, self.T_unit = units, temperature
         self.energy_scale = 1.0 if units == "SI" else 1e3        # J -> mJ (N mm)
+        self.density = None if density is None else float(density)
 
     def p(self, v):             # a modulus in the output unit
         return float(v) * self.scale
 
+    def rho(self):              # the density in the output unit
+        return self.density * self.rho_scale
+
     def T(self, T_c):           # a temperature in the output unit
         return float(T_c) + (KELVIN if self.T_unit == "K" else 0.0)
 
-    def header(self, m: FEMMaterial, comment: str) -> str:
+    def header(self, m: FEMMaterial, comment: str, code: str, fields: str) -> str:
         law = _describe(m.law, dict(m.shift, T_ref=m.T_ref))
-        return "\n".join(comment + " " + s for s in (
-            f"vjax-export: {os.path.basename(m.source) or 'material'}, {len(m.G)} Prony terms, shift law {law}",
-            f"units: stress {self.stress}, time s, temperature {self.T_unit}"
-            + (", energy " + self.energy if m.law == "Arrhenius" else ""),
-            f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, G_g = {_num(self.p(m.G_g))}; "
-            f"elastic bulk K = {_num(self.p(m.K))}"))
+        err = ", ".join(f"{k.split('_')[0]} {v:.4f} ({_pct(v)})" for k, v in m.errors.items()
+                        if k in ("storage_median", "loss_median", "relaxation_median"))
+        rho = (f"density {self.density:g} kg/m^3 = {_num(self.rho())} {self.rho_unit}" if self.density is not None
+               else "no density given (vjax-export --density, kg/m^3): add it for dynamic analyses")
+        lines = [
+            f"vjax {_version()} export for {code} of {m.source or 'a material'}",
+            "source DMA data: " + (", ".join(m.files) if m.files else "not recorded in the material JSON"),
+            "full fit's accuracy on the DMA data, median |log10(model/measured)|: " + (err or "not recorded"),
+            f"series written: {len(m.G)} Prony terms; {m.note}",
+            f"units: stress {self.stress}, time s, temperature {self.T_unit}, density {self.rho_unit}"
+            + (f", energy {self.energy}" if m.law == "Arrhenius" else "") + f"; {rho}",
+            f"shift law {law}; vjax: log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref), a_T > 1 below T_ref"
+            if m.law == "WLF" else f"shift law {law}; vjax: ln a_T = Ea/R (1/T - 1/T_ref), T in K",
+            "check (e.g. a one-element relaxation test): " + ", ".join(
+                f"log10 a_T at {self.T(T):g} {self.T_unit} = {float(m.log10_aT(T)):.6g}" for T in (m.T_ref - 20, m.T_ref + 20)
+                if m.law != "WLF" or m.shift["C2"] > 20),
+            f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, "
+            f"G_g = {_num(self.p(m.G_g))}; elastic bulk K = {_num(self.p(m.K))}",
+            fields]
+        return "\n".join(comment + " " + s for s in lines)
 
 
 def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
     g = m.G / m.G_g
-    lines = [u.header(m, "**"), f"*MATERIAL, NAME={name}", "*ELASTIC, MODULI=INSTANTANEOUS",
-             f"{_num(u.p(m.E_g))}, {_num(m.nu_g)}",
-             "** for large strain replace *ELASTIC by (same *VISCOELASTIC below):",
-             "** *HYPERELASTIC, NEO HOOKE, MODULI=INSTANTANEOUS",
-             f"** {_num(u.p(m.G_g) / 2)}, {_num(2.0 / u.p(m.K))}",
-             "*VISCOELASTIC, TIME=PRONY"]
+    fields = ("*VISCOELASTIC g_i = G_i/G_g, k_i = 0, tau_i; *TRS " + ("th0, C1, C2 (log10 A = a_T)" if m.law == "WLF"
+                                                                       else "th0, Ea (ln A = ln a_T)"))
+    lines = [u.header(m, "**", "Abaqus", fields), f"*MATERIAL, NAME={name}"]
+    if u.density is not None:
+        lines += ["*DENSITY", _num(u.rho())]
+    lines += ["*ELASTIC, MODULI=INSTANTANEOUS", f"{_num(u.p(m.E_g))}, {_num(m.nu_g)}",
+              "** for large strain replace *ELASTIC by (same *VISCOELASTIC below):",
+              "** *HYPERELASTIC, NEO HOOKE, MODULI=INSTANTANEOUS",
+              f"** {_num(u.p(m.G_g) / 2)}, {_num(2.0 / u.p(m.K))}",
+              "*VISCOELASTIC, TIME=PRONY"]
     lines += [f"{_num(gi)}, 0., {_num(ti)}" for gi, ti in zip(g, m.tau)]
     if m.law == "WLF":
         lines += ["*TRS, DEFINITION=WLF", f"{_num(u.T(m.T_ref))}, {_num(m.shift['C1'])}, {_num(m.shift['C2'])}"]
@@ -281,8 +474,12 @@ def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
 
 def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     a = m.G / m.G_g
-    lines = [u.header(m, "!"), f"MP,EX,{mat_id},{_num(u.p(m.E_g))}", f"MP,NUXY,{mat_id},{_num(m.nu_g)}",
-             f"TB,PRONY,{mat_id},1,{len(a)},SHEAR"]
+    fields = "TB,PRONY SHEAR a_i = G_i/G_g, tau_i; TB,SHIFT " + ("WLF Tr, C1, C2" if m.law == "WLF"
+                                                                 else "TN Tr, H/R = Ea/R, 0")
+    lines = [u.header(m, "!", "ANSYS", fields), f"MP,EX,{mat_id},{_num(u.p(m.E_g))}", f"MP,NUXY,{mat_id},{_num(m.nu_g)}"]
+    if u.density is not None:
+        lines.append(f"MP,DENS,{mat_id},{_num(u.rho())}")
+    lines.append(f"TB,PRONY,{mat_id},1,{len(a)},SHEAR")
     pairs = [v for ai, ti in zip(a, m.tau) for v in (ai, ti)]
     for i in range(0, len(pairs), 6):
         lines.append(f"TBDATA,{i + 1}," + ",".join(_num(v) for v in pairs[i:i + 6]))
@@ -306,18 +503,38 @@ def _card(values, width=20) -> str:
     return "".join(out)
 
 
+def lsdyna_shift(m: FEMMaterial, T_unit: str):
+    """(TREF, A, B) of ``*MAT_GENERAL_VISCOELASTIC`` for ``m``'s shift law, temperatures in
+    ``T_unit`` ('K' or 'C'). LS-DYNA's reduced time is t' = int Phi dt with Phi = 1/a_T:
+    WLF Phi = exp(-A (T - TREF)/(B + T - TREF)), so A = -C1 ln 10 and B = C2; Arrhenius
+    (B = 0) Phi = exp(-A (1/T - 1/TREF)) with absolute T, so A = Ea/R (K) and TREF in K."""
+    if m.law == "WLF":
+        TREF = m.T_ref + (KELVIN if T_unit == "K" else 0.0)
+        if TREF <= 0:
+            raise ValueError(f"LS-DYNA wants TREF > 0: T_ref = {m.T_ref:g} C; use --temperature K")
+        return TREF, -m.shift["C1"] * LN10, m.shift["C2"]
+    if T_unit != "K":
+        raise ValueError("LS-DYNA's Arrhenius shift (B = 0) uses absolute temperatures: use --temperature K")
+    return m.T_ref + KELVIN, m.shift["Ea"] / GAS_CONSTANT, 0.0
+
+
 def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
-    if m.law != "WLF":
-        raise ValueError("LS-DYNA *MAT_GENERAL_VISCOELASTIC has only the WLF shift (TREF, A, B): "
-                         f"the material's law is {m.law}; refit with vjax-fit --law WLF")
-    if u.T_unit == "K" and u.T(m.T_ref) <= 0 or u.T_unit == "C" and m.T_ref <= 0:
-        raise ValueError(f"LS-DYNA wants TREF > 0: use temperatures in K (T_ref = {m.T_ref:g} C)")
-    lines = ["*KEYWORD", u.header(m, "$"), "*MAT_GENERAL_VISCOELASTIC +",
-             "$ MID, RO (set the density), BULK, PCF, EF, TREF, A, B",
-             _card([mat_id, 0.0, u.p(m.K), 0.0, 0.0, u.T(m.T_ref), m.shift["C1"], m.shift["C2"]]),
+    if u.density is None:
+        raise ValueError("LS-DYNA needs the density (RO of *MAT_GENERAL_VISCOELASTIC; a deck with RO = 0 does not "
+                         "run): add --density RHO in kg/m^3")
+    if len(m.G) + 1 > CARD_LIMIT["lsdyna"]:
+        raise ValueError(f"LS-DYNA reads at most {CARD_LIMIT['lsdyna']} GI/BETAI cards, G_inf included; the series "
+                         f"has {len(m.G)} terms + G_inf (export prepares a refit of {CARD_LIMIT['lsdyna'] - 1})")
+    TREF, A, B = lsdyna_shift(m, u.T_unit)
+    shift = ("Phi = exp(-A (T - TREF)/(B + T - TREF)) = 1/a_T: A = -C1 ln 10, B = C2" if m.law == "WLF"
+             else "B = 0: Phi = exp(-A (1/T - 1/TREF)) = 1/a_T, T in K: A = Ea/R, TREF in K")
+    lines = ["*KEYWORD", u.header(m, "$", "LS-DYNA", "reduced time t' = int Phi dt, " + shift),
+             "*MAT_GENERAL_VISCOELASTIC +",
+             "$ MID, RO, BULK, PCF, EF, TREF, A, B",
+             _card([mat_id, u.rho(), u.p(m.K), 0.0, 0.0, TREF, A, B]),
              "$ LCID, NT, BSTART, TRAMP, LCIDK, NTK, BSTARTK, TRAMPK",
              _card([0, 0, 0.0, 0.0, 0, 0, 0.0, 0.0]),
-             "$ GI, BETAI = 1/tau_i, KI, BETAKI; the first term (BETAI = 0) is the long-term modulus"]
+             "$ GI, BETAI = 1/tau_i, KI, BETAKI; the first card (BETAI = 0) is the long-term modulus G_inf"]
     lines.append(_card([u.p(m.G_inf), 0.0, 0.0, 0.0]))
     lines += [_card([u.p(gi), 1.0 / ti, 0.0, 0.0]) for gi, ti in zip(m.G, m.tau)]
     lines.append("*END")
@@ -325,9 +542,11 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
 
 
 def _comsol(m: FEMMaterial, u: _Units):
-    T = f"[{u.T_unit if u.T_unit == 'K' else 'degC'}]"
+    T = f"[{'K' if u.T_unit == 'K' else 'degC'}]"
     P = f"[{u.stress}]"
-    lines = [u.header(m, "//"), f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
+    fields = "parameters with their units in brackets; branch file: branch, G_i, tau_i"
+    head = u.header(m, "%", "COMSOL", fields)
+    lines = [head, f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
     if m.law == "WLF":
         lines += [f'C1 {_num(m.shift["C1"])} "WLF constant C1 (log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref))"',
                   f'C2 {_num(m.shift["C2"])}[K] "WLF constant C2"']
@@ -335,16 +554,23 @@ def _comsol(m: FEMMaterial, u: _Units):
         lines += [f'Q {_num(m.shift["Ea"] * u.energy_scale)}[{u.energy}] '
                   '"Arrhenius activation energy (a_T = exp(Q/R (1/T - 1/T_ref)))"']
     lines += [f'K_bulk {_num(u.p(m.K))}{P} "bulk modulus"', f'G_inf {_num(u.p(m.G_inf))}{P} "long-term shear modulus"']
+    if u.density is not None:
+        lines.append(f'rho {_num(u.rho())}[{u.rho_unit}] "density"')
     for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1):
         lines += [f'G_{i} {_num(u.p(gi))}{P} "branch {i} shear modulus"', f'tau_{i} {_num(ti)}[s] "branch {i} relaxation time"']
     params = "\n".join(lines) + "\n"
-    branches = "".join(f"{i} {_num(u.p(gi))} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1))
+    branches = (head + f"\n% columns: branch number, shear modulus G_i [{u.stress}], relaxation time tau_i [s] "
+                "(at T_ref; shift law and bulk modulus in the parameter file)\n"
+                + "".join(f"{i} {_num(u.p(gi))} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
     return params, branches
 
 
-def render(m: FEMMaterial, fmt: str, units: str = "SI", temperature: str = "K", name: str = "VJAX"):
-    """The text of one export (for ``comsol``: a (parameters, branches) pair)."""
-    u = _Units(units, temperature)
+def render(m: FEMMaterial, fmt: str, units: str = "SI", temperature: str | None = None, name: str = "VJAX",
+           density=None):
+    """The text of one export (for ``comsol``: a (parameters, branches) pair) of the series
+    ``m`` as it is (:func:`prepare` chooses the terms). ``temperature`` ('K' or 'C') is
+    required; ``density`` in kg/m^3 (required by LS-DYNA)."""
+    u = _Units(units, temperature, density)
     if fmt == "abaqus":
         return _abaqus(m, u, name)
     if fmt == "ansys":
@@ -367,26 +593,156 @@ def parse_formats(text) -> list:
     return list(dict.fromkeys(names))
 
 
-def check_terms(m: FEMMaterial, max_terms) -> None:
-    """Refuse a material with more than ``max_terms`` Prony terms: dropping or merging terms
-    after the fit loses accuracy that a refit with the cap keeps."""
-    if max_terms is not None and len(m.G) > int(max_terms):
-        raise ValueError(f"the material has {len(m.G)} Prony terms, more than --max-terms {int(max_terms)}; "
-                         f"removing terms after the fit is not accurate: refit with vjax-fit --max-terms {int(max_terms)}")
+def file_name(stem: str, fmt: str, temperature: str) -> tuple:
+    """The file names of one format: ``<stem>_<code>_<K|degC><extension>`` (COMSOL: the
+    parameter and the branch file)."""
+    ext = EXTENSION[fmt] if isinstance(EXTENSION[fmt], tuple) else (EXTENSION[fmt],)
+    return tuple(f"{stem}_{fmt}_{TEMPERATURES[temperature]}{e}" for e in ext)
 
 
-def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature="K", max_terms=None) -> list:
-    """Write the files of ``formats`` (names of :data:`FORMATS`) as ``<out_dir>/<stem>_<code>...``
-    atomically; every file is rendered before the first is written, so a refused format
-    leaves nothing behind. Returns the paths."""
-    check_terms(m, max_terms)
+def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None, max_terms=None, *, density=None,
+           terms="compact", window=None, messages=None) -> list:
+    """Write the files of ``formats`` (names of :data:`FORMATS`) as
+    ``<out_dir>/<stem>_<code>_<K|degC>...`` atomically; every file is rendered before the
+    first is written, so a refused format leaves nothing behind. Returns the paths.
+
+    ``temperature``: 'K' or 'C', required (the scale of every temperature in the files).
+    ``density``: kg/m^3 (LS-DYNA refuses without it). ``terms``, ``max_terms``, ``window``
+    ((t_min, t_max) s at T_ref, for codes with a card limit): see :func:`prepare`.
+    ``messages``: a list that gets the choices made (term counts, refits, accuracy)."""
+    u = _Units(units, temperature, density)          # refuse a missing scale before any fitting
     if not os.path.isdir(out_dir):
         raise ValueError(f"output directory {out_dir!r} does not exist")
-    texts = []
-    for fmt in parse_formats(formats):
-        text = render(m, fmt, units, temperature, name=stem.upper().replace(" ", "_") or "VJAX")
-        suffixes = SUFFIX[fmt] if isinstance(SUFFIX[fmt], tuple) else (SUFFIX[fmt],)
+    fmts = parse_formats(formats)
+    texts, base = [], None
+    for fmt in fmts:
+        if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
+            series = prepare(m, "full", None, window, CARD_LIMIT[fmt], messages)
+        else:
+            base = base or prepare(m, terms, max_terms, messages=messages)
+            series = base
+        text = render(series, fmt, u.name, temperature, name=stem.upper().replace(" ", "_") or "VJAX",
+                      density=density)
         parts = text if isinstance(text, tuple) else (text,)
-        texts += [(os.path.join(out_dir, stem + s), t) for s, t in zip(suffixes, parts)]
+        texts += [(os.path.join(out_dir, n), t) for n, t in zip(file_name(stem, fmt, temperature), parts)]
     return [os.fspath(write_atomic(p, t)) for p, t in texts]
 
+
+# ---- reading a card back: each code's documented formula -----------------------------------
+@dataclasses.dataclass(frozen=True)
+class Card:
+    """A card evaluated by its code's formula (:func:`evaluate_card`): ``code``, ``terms``,
+    ``K`` (Pa), ``G(t)`` (Pa, t in s at T_ref), ``log10_aT(T)`` (T in C) and
+    ``temperature`` (the file's scale)."""
+
+    code: str
+    terms: int
+    K: float
+    G: object
+    log10_aT: object
+    temperature: str
+
+
+def _header_units(text, path):
+    m = re.search(r"units: stress (\w+), time s, temperature (K|C)", text)
+    if not m:
+        raise ValueError(f"{path}: no 'units: stress ..., temperature ...' header line: cannot tell the units")
+    return {"Pa": 1.0, "MPa": 1e6}[m.group(1)], m.group(2)
+
+
+def evaluate_card(path) -> Card:
+    """G(t), K and log10 a_T(T) of a card written by :func:`export` (and perhaps edited since),
+    by its code's documented formula (module docstring): a round trip for checking a card.
+    The code is told by the file name; units and temperature scale by the header line
+    ``units: ...`` (the LS-DYNA and Abaqus keywords carry none)."""
+    path = os.fspath(path)
+    with open(path, encoding="utf-8") as fh:
+        text = fh.read()
+    to_pa, T_unit = _header_units(text, path)
+    Tfile = (lambda Tc: np.asarray(Tc, float) + (KELVIN if T_unit == "K" else 0.0))
+    name = os.path.basename(path)
+    prony = lambda g_inf, g, tau: (lambda t: g_inf + np.sum(  # noqa: E731
+        g * np.exp(-np.asarray(t, float)[..., None] / tau), axis=-1))
+    if name.endswith(".inp"):
+        blocks, key, consts = {}, None, {}
+        for line in (l.strip() for l in text.splitlines()):
+            if line.upper().startswith("** *PHYSICAL CONSTANTS"):
+                consts = {k.strip().upper(): float(v) for k, v in re.findall(r"([A-Z ]+)=([-+0-9.eE]+)", line[3:])}
+            elif line.startswith("*") and not line.startswith("**"):
+                key = line.upper().replace(" ", "")
+                blocks[key] = []
+            elif line and not line.startswith("**"):
+                blocks[key].append([float(v) for v in line.split(",") if v.strip()])
+        (E, nu), = blocks["*ELASTIC,MODULI=INSTANTANEOUS"]
+        G0, K = E / tensile_over_shear(nu) * to_pa, E / (3 * (1 - 2 * nu)) * to_pa
+        g, _, tau = np.array(blocks["*VISCOELASTIC,TIME=PRONY"]).T
+        G = prony(G0 * (1 - g.sum()), G0 * g, tau)
+        if "*TRS,DEFINITION=WLF" in blocks:
+            (th0, C1, C2), = blocks["*TRS,DEFINITION=WLF"]
+            la = lambda T: -C1 * (Tfile(T) - th0) / (C2 + Tfile(T) - th0)  # noqa: E731
+        else:
+            (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
+            z, R = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
+            la = lambda T: E0 / R * (1 / (Tfile(T) - z) - 1 / (th0 - z)) / LN10  # noqa: E731
+        return Card("abaqus", len(tau), K, G, la, T_unit)
+    if name.endswith(".mac"):
+        mp, tables, cur, toff = {}, {}, None, 0.0
+        for line in text.splitlines():
+            f = [v.strip() for v in line.split("!")[0].split(",")]
+            cmd = f[0].upper()
+            if cmd == "MP":
+                mp[f[1].upper()] = float(f[3])
+            elif cmd == "TB":
+                cur = (f[1].upper(), f[5].upper())
+                tables[cur] = {}
+            elif cmd == "TBDATA":
+                tables[cur].update({int(f[1]) + i: float(v) for i, v in enumerate(f[2:])})
+            elif cmd == "TOFFST":
+                toff = float(f[1])
+        E, nu = mp["EX"], mp["NUXY"]
+        G0, K = E / tensile_over_shear(nu) * to_pa, E / (3 * (1 - 2 * nu)) * to_pa
+        v = np.array([tables[("PRONY", "SHEAR")][i] for i in sorted(tables[("PRONY", "SHEAR")])])
+        a, tau = v[0::2], v[1::2]
+        G = prony(G0 * (1 - a.sum()), G0 * a, tau)
+        if ("SHIFT", "WLF") in tables:
+            s = tables[("SHIFT", "WLF")]
+            la = lambda T: -s[2] * (Tfile(T) - s[1]) / (s[3] + Tfile(T) - s[1])  # noqa: E731
+        else:
+            s = tables[("SHIFT", "TN")]
+            la = lambda T: s[2] * (1 / (Tfile(T) + toff) - 1 / (s[1] + toff)) / LN10  # noqa: E731
+        return Card("ansys", len(tau), K, G, la, T_unit)
+    if name.endswith(".k"):
+        lines = text.splitlines()
+        i = next(j for j, l in enumerate(lines) if l.upper().startswith("*MAT_GENERAL_VISCOELASTIC"))
+        width = 20 if lines[i].rstrip().endswith("+") else 10
+        cards = []
+        for l in lines[i + 1:]:
+            if l.startswith("*"):
+                break
+            if not l.startswith("$") and l.strip():
+                cards.append([float(l[j:j + width]) if l[j:j + width].strip() else 0.0 for j in range(0, len(l), width)])
+        K, TREF, A, B = cards[0][2] * to_pa, cards[0][5], cards[0][6], cards[0][7]
+        terms = np.array([c + [0.0] * (4 - len(c)) for c in cards[2:]])
+        G = lambda t: to_pa * np.sum(terms[:, 0] * np.exp(-np.asarray(t, float)[..., None] * terms[:, 1]), axis=-1)  # noqa: E731
+        if B != 0:     # log10 a_T = -ln Phi / ln 10
+            la = lambda T: A * (Tfile(T) - TREF) / (B + Tfile(T) - TREF) / LN10  # noqa: E731
+        else:
+            la = lambda T: A * (1 / Tfile(T) - 1 / TREF) / LN10  # noqa: E731
+        return Card("lsdyna", int(np.count_nonzero(terms[:, 1])), K, G, la, T_unit)
+    if name.endswith("_parameters.txt"):
+        p, units = {}, {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3}
+        for line in text.splitlines():
+            q = re.match(r'^(\w+) ([-+0-9.eE]+)(?:\[([^\]]*)\])? "', line)
+            if q:
+                v, un = float(q.group(2)), q.group(3) or ""
+                p[q.group(1)] = v + KELVIN if un == "degC" else v * units.get(un, 1.0)
+        n = sum(1 for k in p if re.fullmatch(r"G_\d+", k))
+        g = np.array([p[f"G_{i}"] for i in range(1, n + 1)])
+        tau = np.array([p[f"tau_{i}"] for i in range(1, n + 1)])
+        Tk = lambda T: np.asarray(T, float) + KELVIN  # noqa: E731
+        if "C1" in p:
+            la = lambda T: -p["C1"] * (Tk(T) - p["T_ref"]) / (p["C2"] + Tk(T) - p["T_ref"])  # noqa: E731
+        else:
+            la = lambda T: p["Q"] / GAS_CONSTANT * (1 / Tk(T) - 1 / p["T_ref"]) / LN10  # noqa: E731
+        return Card("comsol", n, p["K_bulk"], prony(p["G_inf"], g, tau), la, T_unit)
+    raise ValueError(f"{path}: not a card of vjax-export (expected .inp, .mac, .k or _parameters.txt)")

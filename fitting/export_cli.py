@@ -3,15 +3,20 @@
 
 The shear relaxation modulus G(t) = E(t) / (2 (1 + nu)) and an elastic bulk modulus K (from
 ``--nu`` < 0.5 or ``--bulk-modulus``) are written in each code's own normalization, with the
-WLF or Arrhenius shift law (see :mod:`fitting.export`). Files: ``<stem>_abaqus.inp``,
-``<stem>_ansys.mac``, ``<stem>_lsdyna.k``, ``<stem>_comsol_parameters.txt`` and
-``<stem>_comsol_branches.txt`` in ``--out-dir`` (default: next to the JSON). Exit codes: 0
-success, 1 a material that cannot be exported (message on stderr, nothing written), 2 bad
-command line. Files are written atomically. This tool does not use JAX (nothing to compile).
+WLF or Arrhenius shift law (see :mod:`fitting.export`). The series is compact by default: the
+fewest terms (at most ``--max-terms``, default 20) whose medians on the DMA data named in the
+JSON stay within 1.5x of the full fit's (:mod:`fitting.compact`); ``--full-spectrum`` writes
+every term. LS-DYNA gets the best 5 terms + G_inf (its six cards) over ``--window`` (reduced
+times at T_ref, s; default the data's), the refit's accuracy printed and in the file.
+``--temperature K|C`` is required (it is in the file names too); ``--density`` (kg/m^3) is
+written for every code and required for LS-DYNA. Files: ``<stem>_<code>_<K|degC>.inp|.mac|.k``
+and ``<stem>_comsol_<K|degC>_parameters.txt`` / ``_branches.txt`` in ``--out-dir`` (default:
+next to the JSON). Exit codes: 0 success, 1 a material that cannot be exported (message on
+stderr, nothing written), 2 bad command line. Files are written atomically.
 
 Example::
 
-    vjax-export material.json --format abaqus,ansys --nu 0.45 --units mm-N-s-MPa
+    vjax-export material.json --format abaqus,lsdyna --nu 0.45 --temperature C --density 1200
 """
 from __future__ import annotations
 
@@ -31,8 +36,14 @@ def add_arguments(p, fit: bool = False) -> None:
                    help="elastic bulk modulus in Pa instead of the one from --nu")
     g.add_argument("--units", choices=["SI", "mm-N-s-MPa"], default="SI",
                    help="SI (Pa, s, J/mol) or mm-N-s-MPa (MPa, s, mJ/mol); default SI")
-    g.add_argument("--temperature", choices=["K", "C"], default="K",
-                   help="temperature unit in the files (default K)")
+    g.add_argument("--temperature", choices=["K", "C"], default=None,
+                   help="temperature scale of the files, K or C (required: no default; also in the file names)")
+    g.add_argument("--density", type=float, default=None, metavar="RHO",
+                   help="density in kg/m^3, written where each code wants it (required for LS-DYNA)")
+    g.add_argument("--full-spectrum", action="store_true",
+                   help="write every Prony term of the fit instead of the compact series")
+    g.add_argument("--window", default=None, metavar="T_MIN,T_MAX",
+                   help="reduced times (s, at T_ref) the LS-DYNA six-card refit must hold (default: the data's)")
 
 
 def check_arguments(args, fit: bool = False):
@@ -52,7 +63,42 @@ def check_arguments(args, fit: bool = False):
                 "FEM elements reject; give --nu 0.49 (e.g.) or --bulk-modulus K")
     if not fit and args.max_terms is not None and args.max_terms < 1:
         return f"--max-terms must be >= 1, got {args.max_terms}"
+    if args.temperature is None:
+        return ("the temperature scale of the cards has no default: add --temperature K or --temperature C "
+                "(every temperature in the files is in it)")
+    if args.density is not None and not (0 < args.density < float("inf")):
+        return f"--density must be a finite number > 0 (kg/m^3), got {args.density}"
+    try:
+        parse_window(args.window)
+    except ValueError as e:
+        return str(e)
     return None
+
+
+def parse_window(text):
+    """'1e-6,1e3' -> (1e-6, 1e3) (s), or None."""
+    if text is None:
+        return None
+    try:
+        lo, hi = (float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--window must be T_MIN,T_MAX in s, e.g. 1e-6,1e3; got {text!r}") from None
+    if not (0 < lo < hi < float("inf")):
+        raise ValueError(f"--window must be T_MIN,T_MAX with 0 < T_MIN < T_MAX (s), got {text!r}")
+    return lo, hi
+
+
+def run(m, formats, out_dir, stem, args, max_terms=None) -> list:
+    """Export ``m`` with the options of :func:`add_arguments`, printing the choices made."""
+    from . import export
+    notes = []
+    written = export.export(m, formats, out_dir, stem, units=args.units, temperature=args.temperature,
+                            max_terms=max_terms, density=args.density,
+                            terms="full" if args.full_spectrum else "compact", window=parse_window(args.window),
+                            messages=notes)
+    for n in notes:
+        print(n)
+    return written
 
 
 def _parser():
@@ -66,7 +112,8 @@ def _parser():
     p.add_argument("--out-dir", default=None, help="output directory (default: the JSON's)")
     p.add_argument("--stem", default=None, help="file name stem (default: the JSON's)")
     p.add_argument("--max-terms", type=int, default=None,
-                   help="refuse materials with more Prony terms (refit with vjax-fit --max-terms instead)")
+                   help="at most this many Prony terms (the compact series is refit to it; with --full-spectrum a "
+                        "material with more terms is refused)")
     p.add_argument("--shift-law", choices=["WLF", "Arrhenius"], default=None,
                    help="export this closed-form alternative stored next to a table shift law")
     add_arguments(p)
@@ -87,12 +134,11 @@ def main(argv=None) -> int:
     stem = args.stem or os.path.splitext(os.path.basename(args.material))[0]
     try:
         m = export.load(args.material, nu=args.nu, bulk_modulus=args.bulk_modulus, shift_law=args.shift_law)
-        written = export.export(m, args.format, out_dir, stem, units=args.units, temperature=args.temperature,
-                                max_terms=args.max_terms)
+        written = run(m, args.format, out_dir, stem, args, max_terms=args.max_terms)
     except (ValueError, OSError) as e:
         print(f"vjax-export: error: {e}", file=sys.stderr)
         return 1
-    print(f"{len(m.G)} Prony terms, G_g = {m.G_g:.6g} Pa, G_inf = {m.G_inf:.6g} Pa, K = {m.K:.6g} Pa, "
+    print(f"fit: {len(m.G)} Prony terms, G_g = {m.G_g:.6g} Pa, G_inf = {m.G_inf:.6g} Pa, K = {m.K:.6g} Pa, "
           f"shift law {m.law}")
     print("wrote " + ", ".join(written))
     return 0

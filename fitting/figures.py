@@ -38,7 +38,7 @@ def start_workers() -> bool:
     if _context is None and _cores() > 1 and "forkserver" in multiprocessing.get_all_start_methods():
         from multiprocessing import forkserver
         context = multiprocessing.get_context("forkserver")
-        context.set_forkserver_preload(["fitting._figure_server"])
+        context.set_forkserver_preload(["fitting.figure_server"])
         try:
             forkserver.ensure_running()
         except OSError:     # no server (e.g. no free file descriptors): draw in this process

@@ -34,7 +34,7 @@ from .master import ShiftTable
 __all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict", "closed_form_shift"]
 
 
-def _shift_to_dict(shift) -> dict:
+def shift_to_dict(shift) -> dict:
     if isinstance(shift, WLF):
         return {"law": "WLF", "C1": float(shift.C1), "C2": float(shift.C2), "T_ref": float(shift.T_ref)}
     if isinstance(shift, Arrhenius):
@@ -65,7 +65,7 @@ def material_to_dict(material: Material, shift, modulus: str = "E", uncertainty=
         raise ValueError(f"modulus must be 'E' or 'G', got {modulus!r}")
     d = {"kind": "prony", "E0": float(material.E0), "moduli": [float(v) for v in np.asarray(material.moduli)],
          "times": [float(v) for v in np.asarray(material.times)], "nu": float(material.nu),
-         "modulus": modulus, "shift": _shift_to_dict(shift)}
+         "modulus": modulus, "shift": shift_to_dict(shift)}
     if shift_alternatives:
         d["shift_alternatives"] = _clean(shift_alternatives)
     if uncertainty:

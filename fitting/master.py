@@ -35,7 +35,7 @@ import numpy as np
 from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
 
 from .dma import DMATable, DMAFormatError
-from .evaluate import _table_log10_aT
+from .evaluate import table_log10_aT
 
 __all__ = ["ShiftTable", "segment", "shift_factors", "fit_wlf", "fit_arrhenius", "fit_law", "read_shift_file",
            "pair_shift"]
@@ -84,7 +84,7 @@ class ShiftTable:
         T, y = T[order], y[order]
         if np.any(np.diff(T) == 0):
             raise ValueError(f"shift table has repeated temperatures: {T[np.flatnonzero(np.diff(T) == 0)]}")
-        off = float(_table_log10_aT(T, y, np.float64(T_ref)))     # numpy: no JAX dispatch
+        off = float(table_log10_aT(T, y, np.float64(T_ref)))     # numpy: no JAX dispatch
         return cls(jnp.asarray(T), jnp.asarray(y - off), jnp.asarray(float(T_ref)))
 
 

@@ -26,7 +26,7 @@ Steps:
 3. :func:`refine` - all parameters (log E0, log E_k, log tau_k and the shift-law parameters:
    C1, C2 for WLF, Ea for Arrhenius, or one log10 a_T per sweep for a table) minimize the
    log residual on the **raw unshifted** data by Levenberg-Marquardt with JAX Jacobians
-   (:mod:`fitting._optim`). Positivity holds by construction (log parameters; WLF C2 is kept
+   (:mod:`fitting.optim`). Positivity holds by construction (log parameters; WLF C2 is kept
    above the asymptote, C2 > T_ref - min T). The relaxation times are held within the
    reduced-frequency range of the data plus ``tau_margin`` decades by a penalty residual (an
    arm relaxing below the data would stand in for E0). The Jacobian is analytic and the
@@ -47,13 +47,15 @@ import numpy as np
 
 from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, Material, WLF
 
-from . import _optim, evaluate
+from . import optim, evaluate
+from .evaluate import raw_errors
 from .dma import DMATable
 from .master import ShiftTable, segment
 
 __all__ = ["PronyFit", "fit_master", "choose_terms", "refine", "raw_errors", "log_residual"]
 
 LN10 = math.log(10.0)
+COV_RCOND = math.sqrt(1e-13)    # singular values kept in the fits' covariances (eigenvalues of J^T J: 1e-13)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -113,7 +115,7 @@ def fit_master(omega_r, storage, loss, density=1.0, pad=0.5, reweight=2):
     for _ in range(reweight + 1):
         Aw = A * wts[:, None]
         colnorm = np.linalg.norm(Aw, axis=0) + 1e-300
-        z, _ = _optim.nnls(Aw / colnorm, y * wts)
+        z, _ = optim.nnls(Aw / colnorm, y * wts)
         x = z / colnorm
         model = A @ x
         wts = 1.0 / np.sqrt(y * np.maximum(model, 1e-6 * y))
@@ -153,7 +155,7 @@ def choose_terms(omega_r, storage, loss, densities=(0.5, 0.75, 1.0, 1.25, 1.5, 2
 _WLF, _ARR, _TAB = 0, 1, 2
 
 
-def _law_spec(shift, T_sets, T_ref, T_min):
+def law_spec(shift, T_sets, T_ref, T_min):
     """(kind, initial unconstrained params, params -> physical law, params, cov -> sigma, c2min)."""
     if isinstance(shift, WLF):
         c2min = max(0.0, T_ref - T_min) + 1e-6
@@ -189,7 +191,7 @@ def _law_spec(shift, T_sets, T_ref, T_min):
     raise TypeError(f"unknown shift law {type(shift).__name__}")
 
 
-def _law_eval(kind, p, Ts, T_ref, c2min):
+def law_eval(kind, p, Ts, T_ref, c2min):
     """log10 a_T per set and its Jacobian with respect to the unconstrained law parameters
     ``p`` (padded vector): ``(L (sets,), dL/dp (sets, len(p)))``, the derivatives written out
     (forward-mode differentiation through a switch of three laws was half of the fit's
@@ -233,7 +235,7 @@ def _resid_jac(x, on, data, kind, K, robust):
     Ek = jnp.exp(x[1:K + 1]) * on
     lt = x[K + 1:2 * K + 1]
     plaw = x[2 * K + 1:]
-    L, JL = _law_eval(kind, plaw, Ts, T_ref, c2min)      # JL: (sets, nl)
+    L, JL = law_eval(kind, plaw, Ts, T_ref, c2min)      # JL: (sets, nl)
     u = jnp.log(w) + LN10 * L[setid]
     wt = jnp.exp(u[:, None] + lt[None, :])
     den = 1.0 + wt * wt
@@ -256,7 +258,7 @@ def _resid_jac(x, on, data, kind, K, robust):
     r = jnp.concatenate([wts[0] * (jnp.log10(st) - ls), wts[1] * (jnp.log10(lo) - ll)])
     J = jnp.concatenate([Js, Jl], axis=0)
     if np.isfinite(robust):
-        rr, dr = jax.jvp(lambda v: _robust(v, robust), (r,), (jnp.ones_like(r),))
+        rr, dr = jax.jvp(lambda v: cauchy_residual(v, robust), (r,), (jnp.ones_like(r),))
         r, J = rr, J * dr[:, None]
     # soft bounds: relaxation times stay within the reduced-frequency range of the data
     # plus a margin (an arm relaxing far below the data is indistinguishable from E0)
@@ -273,7 +275,7 @@ def _solve(x0, active, data, *, kind, K, max_iter, robust, ftol):
     law (padded)]; inactive entries (``active`` = 0) carry no modulus and do not move. The
     shapes (K, padded law size, points) are the only things that trigger a compilation."""
     on = active[1:K + 1]
-    return _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
+    return optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
                                       resid_jac=lambda x: _resid_jac(x, on, data, kind, K, robust))
 
 
@@ -288,20 +290,7 @@ def _log_residual(material, shift, T, omega, storage, loss):
     return jnp.concatenate([jnp.log10(E.real / storage), jnp.log10(E.imag / loss)])
 
 
-def raw_errors(material: Material, shift, table: DMATable) -> dict:
-    """Errors on the raw unshifted points: median and 90th percentile of |log10(pred/meas)|
-    for storage and loss separately, plus rms of all log10 residuals (evaluated in numpy,
-    :mod:`fitting.evaluate`; :func:`log_residual` is the JAX version for derivatives)."""
-    E = evaluate.modulus(material, table.omega * 10.0 ** evaluate.log10_aT(shift, table.T))
-    r = np.concatenate([np.log10(E.real / table.storage), np.log10(E.imag / table.loss)])
-    n = len(table)
-    rs, rl = np.abs(r[:n]), np.abs(r[n:])
-    return {"storage_median": float(np.median(rs)), "storage_p90": float(np.percentile(rs, 90)),
-            "loss_median": float(np.median(rl)), "loss_p90": float(np.percentile(rl, 90)),
-            "rms": float(np.sqrt(np.mean(r ** 2)))}
-
-
-def _robust(r, c):
+def cauchy_residual(r, c):
     """Residual transform whose sum of squares is the Cauchy loss sum c^2 ln(1 + (r/c)^2);
     c = inf leaves r unchanged. Double-where keeps the gradient finite at r = 0."""
     if not np.isfinite(c):
@@ -312,7 +301,7 @@ def _robust(r, c):
     return jnp.where(small, r, out)
 
 
-def _pad_size(n, step=8):
+def pad_size(n, step=8):
     return max(step, -(-n // step) * step)
 
 
@@ -332,10 +321,10 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     rest refined again (0 disables)."""
     T_sets = table.temperatures
     T_ref = float(shift.T_ref)
-    kind, p_law0, physical, sig, c2min = _law_spec(shift, T_sets, T_ref, float(T_sets.min()))
+    kind, p_law0, physical, sig, c2min = law_spec(shift, T_sets, T_ref, float(T_sets.min()))
     scale = float(np.median(table.storage))
     K = int(material.moduli.shape[0])
-    Kp = max(pad_terms or _pad_size(K), K)
+    Kp = max(pad_terms or pad_size(K), K)
     nl = len(p_law0)
     nlp = max(len(T_sets), 2)
     E0 = max(float(material.E0), 1e-4 * float(np.min(table.storage)))
@@ -381,7 +370,7 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     Kk = int(active[1:Kp + 1].sum())
     rss = float(np.sum(r ** 2))
     s2 = rss / max(n - p, 1)
-    cov = s2 * np.linalg.pinv(J.T @ J, rcond=1e-13)
+    cov = s2 * optim.covariance(J, COV_RCOND)[0]
     E0, Ek, tau = np.exp(x[0]) * scale, np.exp(x[1:Kk + 1]) * scale, np.exp(x[Kk + 1:2 * Kk + 1])
     order = np.argsort(tau)
     sd = np.sqrt(np.clip(np.diag(cov), 0, None))

@@ -23,7 +23,7 @@ import re
 import numpy as np
 
 from . import dma, evaluate
-from .dma import DMAFormatError
+from .rawfile import DMAFormatError
 
 __all__ = ["RelaxationTable", "read", "is_relaxation"]
 
@@ -41,7 +41,7 @@ def _canon(name: str):
             return ("relax", k)
     if low in ("relaxation modulus", "relaxation"):
         return ("relax", None)
-    c = dma._canon_name(n)
+    c = dma.canon_name(n)
     return c if c in ("T", "Tset", "set") else None
 
 
@@ -95,14 +95,14 @@ def _header_names(path):
     if not lines:
         return None
     sep = "," if lines[0].count(",") >= lines[0].count(";") else ";"
-    return [(dma._UNIT_IN_NAME.match(n.strip()) or re.match(r"(?P<name>.*)", n.strip())).group("name")
+    return [(dma.UNIT_IN_NAME.match(n.strip()) or re.match(r"(?P<name>.*)", n.strip())).group("name")
             for n in lines[0].split(sep)]
 
 
 def is_relaxation(paths) -> bool:
     """True when the (first) input file's header has a time and a relaxation-modulus column."""
     try:
-        files = dma._expand(paths)
+        files = dma.expand(paths)
     except (DMAFormatError, OSError):
         return False
     names = _header_names(files[0]) if files and os.path.isfile(files[0]) else None
@@ -117,9 +117,9 @@ def read(paths, kind=None, drop_nonpositive=False) -> RelaxationTable:
     if kind is not None and kind not in ("E", "G"):
         raise ValueError(f"kind must be 'E' or 'G', got {kind!r}")
     cols = {"T": [], "t": [], "E": [], "set": []}
-    kinds, dropped, files, next_set = set(), 0, dma._expand(paths), 0
+    kinds, dropped, files, next_set = set(), 0, dma.expand(paths), 0
     for path in files:
-        for block in dma._blocks_from_file(path):
+        for block in dma.blocks_from_file(path):
             found = {}
             for j, (n, u) in enumerate(zip(block.names, block.units)):
                 c = _canon(n)
@@ -136,12 +136,12 @@ def read(paths, kind=None, drop_nonpositive=False) -> RelaxationTable:
             data = np.asarray(block.rows, float).reshape(len(block.rows), len(block.names))
             line = block.header_line
             j, n, u, k = found["t"]
-            tu = dma._clean_unit(u)
+            tu = dma.clean_unit(u)
             if tu not in _TIME_UNITS:
                 raise DMAFormatError(path, line, f"unknown time unit {u.strip()!r} in column {n!r} (known: s, ms, min, h)")
             t = data[:, j] * _TIME_UNITS[tu]
             j, n, u, k = found["relax"]
-            E = data[:, j] * dma._modulus_scale(u, path, line, n)
+            E = data[:, j] * dma.modulus_scale(u, path, line, n)
             k = kind or k or block.kind_hint
             if k is None:
                 raise DMAFormatError(path, line, "cannot tell tensile (E) from shear (G): pass kind='E' or 'G'")
@@ -149,7 +149,7 @@ def read(paths, kind=None, drop_nonpositive=False) -> RelaxationTable:
             tkey = "Tset" if "Tset" in found else "T" if "T" in found else None
             if tkey:
                 j, n, u, _ = found[tkey]
-                T = data[:, j] + dma._temp_offset(u, path, line, n)
+                T = data[:, j] + dma.temp_offset(u, path, line, n)
             else:
                 T = np.full(len(t), dma.temperature_from_filename(path))
             for arr, label in ((t, "time"), (E, "relaxation modulus"), (T, "temperature")):
@@ -166,7 +166,7 @@ def read(paths, kind=None, drop_nonpositive=False) -> RelaxationTable:
                 dropped += int(bad.sum())
                 t, E, T = t[~bad], E[~bad], T[~bad]
             groups = ([data[~bad, found["set"][0]] == s for s in np.unique(data[~bad, found["set"][0]])]
-                      if "set" in found else dma._cluster(T))
+                      if "set" in found else dma.cluster(T))
             for m in groups:
                 cols["T"].append(np.full(int(m.sum()), round(float(np.mean(T[m])), 1)))
                 cols["t"].append(t[m])

@@ -16,7 +16,7 @@ minimize
 r_i the log10 residuals of storage and loss (or of E(t)) on the raw unshifted points. The
 penalty is on the second difference of the log spectrum: a smooth, positive spectrum (the
 moduli are positive by construction) whose shape the data fix and whose wiggles they do not.
-Levenberg-Marquardt with JAX Jacobians solves it (:mod:`fitting._optim`).
+Levenberg-Marquardt with JAX Jacobians solves it (:mod:`fitting.optim`).
 
 Choice of lam: generalized cross-validation (Craven and Wahba 1979; Golub, Heath and Wahba
 1979) on the problem linearized at the solution,
@@ -45,33 +45,14 @@ import numpy as np
 
 from vjax.material import Material
 
-from . import _optim, evaluate, jax_cache
+from . import evaluate, jax_cache, optim
+from .evaluate import count_extrema, loss_extrema
 from .dma import set_temperatures
-from .prony import LN10, PronyFit, _law_eval, _law_spec, _robust
+from .prony import COV_RCOND, LN10, PronyFit, cauchy_residual, law_eval, law_spec
 
 __all__ = ["count_extrema", "loss_extrema", "SmoothData", "smooth_fit", "LAMBDAS"]
 
 LAMBDAS = tuple(10.0 ** np.arange(3.0, -6.01, -1.0))
-_SAMPLES = 4096      # loss-modulus samples of loss_extrema: >= 100 per decade over 40 decades
-
-
-def count_extrema(y) -> int:
-    """Number of interior local extrema of the sampled curve ``y`` (sign changes of its
-    differences, exact plateaus skipped)."""
-    d = np.sign(np.diff(np.asarray(y, float)))
-    d = d[d != 0]
-    return int(np.count_nonzero(d[1:] != d[:-1]))
-
-
-def loss_extrema(material: Material, omega_min: float, omega_max: float) -> int:
-    """Local extrema of the loss modulus E''(omega) of ``material`` between ``omega_min`` and
-    ``omega_max`` (rad/s, reduced), sampled at 4096 log-spaced points (>= 100 per decade up
-    to 40 decades; more beyond)."""
-    if not (0 < omega_min < omega_max):
-        raise ValueError(f"need 0 < omega_min < omega_max, got {omega_min!r}, {omega_max!r}")
-    decades = math.log10(omega_max / omega_min)
-    n = _SAMPLES if decades <= 40 else int(100 * decades) + 1
-    return count_extrema(evaluate.loss(material, 10.0 ** np.linspace(math.log10(omega_min), math.log10(omega_max), n)))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -133,7 +114,7 @@ def _resid_jac(x, on, data, domain, K, robust):
     lE = x[1:K + 1]
     Ek = jnp.exp(lE) * on
     plaw = x[K + 1:]
-    L, JL = _law_eval(kind, plaw, Ts, T_ref, c2min)
+    L, JL = law_eval(kind, plaw, Ts, T_ref, c2min)
     JL = LN10 * JL[setid]      # d ln z / d law
     z = jnp.exp((u + LN10 * L[setid])[:, None] + ltau[None, :])
     p1, p2, d1, d2 = _kernel(domain, z)
@@ -145,7 +126,7 @@ def _resid_jac(x, on, data, domain, K, robust):
     r = jnp.concatenate([w1 * (jnp.log10(m1) - y1), w2 * (jnp.log10(m2) - y2)])
     J = jnp.concatenate([J1, J2], axis=0)
     if np.isfinite(robust):
-        r, dr = jax.jvp(lambda v: _robust(v, robust), (r,), (jnp.ones_like(r),))
+        r, dr = jax.jvp(lambda v: cauchy_residual(v, robust), (r,), (jnp.ones_like(r),))
         J = J * dr[:, None]
     # smoothness: second differences of ln E_k among active arms (rows touching padding are off)
     rows_on = on[:-2] * on[1:-1] * on[2:]
@@ -159,7 +140,7 @@ def _solve(x0, active, data, *, domain, K, max_iter, ftol, robust):
     # the shift law's kind is data (a traced index): the table, WLF and Arrhenius fits of a
     # calibration share one compilation
     on = active[1:K + 1]
-    sol = _optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
+    sol = optim.levenberg_marquardt(None, x0, max_iter=max_iter, ftol=ftol, active=active,
                                      resid_jac=lambda x: _resid_jac(x, on, data, domain, K, robust))
     return tuple(jax.tree.leaves(sol))     # arrays only, for jax_cache.call (LMSolution(*leaves))
 
@@ -202,7 +183,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         raise ValueError(f"max_terms must be >= 3, got {max_terms!r}")
     Tsets = data.temperatures
     T_ref = float(shift.T_ref)
-    kind, p_law0, physical, sig, c2min = _law_spec(shift, Tsets, T_ref, float(Tsets.min()))
+    kind, p_law0, physical, sig, c2min = law_spec(shift, Tsets, T_ref, float(Tsets.min()))
     u = data.log_rate()
     scale = float(np.median(data.y1))
     ur = u + LN10 * evaluate.log10_aT(shift, data.T)     # ln reduced rate
@@ -244,7 +225,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
         D[i, 1 + i:4 + i] = (1.0, -2.0, 1.0)
 
     def run(lam_, x0):
-        sol = _optim.LMSolution(*jax_cache.call(_solve, (x0, active, base + (math.sqrt(lam_),)),
+        sol = optim.LMSolution(*jax_cache.call(_solve, (x0, active, base + (math.sqrt(lam_),)),
                                                 domain=data.domain, K=Kp, max_iter=int(max_iter),
                                                 ftol=float(ftol), robust=float(robust)))
         xs = np.asarray(sol.x)
@@ -287,7 +268,7 @@ def smooth_fit(data: SmoothData, shift, *, per_decade: float = 3.0, margin: floa
     m = len(live)
     p_eff = best["edf"]
     s2 = float(np.sum(r ** 2)) / max(m - p_eff, 1.0)
-    cov = s2 * np.linalg.pinv(J.T @ J + best["lam"] * D.T @ D, rcond=1e-13)
+    cov = s2 * optim.covariance(np.vstack([J, math.sqrt(best["lam"]) * D]), COV_RCOND)[0]
     sd = np.sqrt(np.clip(np.diag(cov), 0, None))
     sigma = {"E0": float(mat.E0) * sd[0], "moduli": list(np.asarray(mat.moduli) * sd[1:K + 1]), "times": [0.0] * K}
     if fit_shift:

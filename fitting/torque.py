@@ -61,7 +61,7 @@ import numpy as np
 import vjax
 from vjax.material import Material, WLF
 
-from . import _optim
+from . import optim
 
 __all__ = ["TorqueData", "TorqueFormatError", "read_torque_csv", "write_torque_csv", "roller_model", "pin_model",
            "Params", "TorqueFit", "fit_torque", "residual_jacobian", "identifiability", "gauss_newton_cov",
@@ -326,14 +326,8 @@ def gauss_newton_cov(J, rcond=1e-8):
     parameter with more than 1% of its weight in dropped directions gets sd = inf (it is not
     determined; a plain pseudo-inverse would report a misleadingly small sd). Returns
     (cov, sd)."""
-    J = np.asarray(J, float)
-    _, s, Vt = np.linalg.svd(J, full_matrices=False)
-    keep = s > rcond * (s[0] if s.size else 0.0)
-    inv = np.where(keep, 1.0 / np.where(keep, s, 1.0) ** 2, 0.0)
-    cov = (Vt.T * inv) @ Vt
-    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
-    lost = np.sum(Vt[~keep] ** 2, axis=0) if np.any(~keep) else np.zeros(J.shape[1])
-    return cov, np.where(lost > 0.01, np.inf, sd)
+    cov, sd, resolved = optim.covariance(J, rcond)
+    return cov, np.where(resolved < 0.99, np.inf, sd)
 
 
 def identifiability(J_torque, names, threshold=0.1, rcond=1e-10):
@@ -349,14 +343,10 @@ def identifiability(J_torque, names, threshold=0.1, rcond=1e-10):
     determined directions).
     """
     J = np.asarray(J_torque, float)
-    U, s, Vt = np.linalg.svd(J, full_matrices=False)
-    cut = rcond * s[0] if s.size else 0.0
-    inv = np.where(s > cut, 1.0 / np.where(s > cut, s, 1.0) ** 2, 0.0)
-    cov = (Vt.T * inv) @ Vt
-    sd = np.sqrt(np.clip(np.diag(cov), 0, None))
+    _, s, Vt = np.linalg.svd(J, full_matrices=False)
+    _, sd, resolved = optim.covariance(J, rcond)
     # a parameter with no projection on the retained directions is not identified at all
-    unresolved = np.sum((Vt[s > cut] ** 2), axis=0) < 0.5
-    sd = np.where(unresolved, np.inf, sd)
+    sd = np.where(resolved < 0.5, np.inf, sd)
     def describe(i):
         v = Vt[i]
         top = np.argsort(-np.abs(v))[:3]
@@ -486,30 +476,29 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     loss, x, J, aux = best
     # Levenberg-Marquardt from Adam's best point, on the Jacobian Adam already uses: Adam
     # crawls once the loss is a narrow valley; Gauss-Newton steps reach the noise floor.
-    # The steps and damping of fitting._optim's Levenberg-Marquardt, driven from here
-    # (each trial is a set of bearing solves: reported, and kept only if they converged).
-    lam = 1e-3
-    for _ in range(polish):
-        if float(jnp.linalg.norm(2.0 * (J.T @ aux[0]) / Nt)) < gtol:
-            break
-        step = _optim.marquardt_step(J, aux[0], lam, floor=1e-4)
-        J_new, aux_new = jac_fn(x + step)
-        it += 1                                          # one more evaluation of every solve
-        new_loss, g_new = loss_grad(J_new, aux_new)
-        if usable(new_loss, aux_new) and new_loss < loss:
-            # stop once a nearly Gauss-Newton step no longer gains
-            done = loss - new_loss < 1e-6 * loss and lam < 1.0
-            loss, x, J, aux, lam = new_loss, x + step, J_new, aux_new, float(_optim.next_damping(lam, True))
-            history.append((it, loss, float(jnp.linalg.norm(g_new)), time.perf_counter() - t_start))
-            if progress:
-                print(f"  LM   {it:4d}  loss {loss:.6g}  lambda {lam:.1e}  {time.perf_counter() - t_start:7.1f} s",
-                      file=log, flush=True)
-            if done:
-                break
-        else:
-            lam = float(_optim.next_damping(lam, False))
-            if lam > 1e10:
-                break
+    # The steps and damping of fitting.optim's Levenberg-Marquardt, driven from here
+    # (fitting.optim.levenberg_marquardt_host: each trial is a set of bearing solves,
+    # reported, and kept only if they all converged).
+    lm_log = []
+
+    def resid_jac(x_try):
+        J_try, aux_try = jac_fn(jnp.asarray(x_try))
+        return np.asarray(aux_try[0], float), np.asarray(J_try, float), (J_try, aux_try)
+
+    def accepted(k, cost, x_new, extra):
+        loss_new, g_new = loss_grad(*extra)
+        lm_log.append((it + k, loss_new, float(jnp.linalg.norm(g_new)), time.perf_counter() - t_start))
+        if progress:
+            print(f"  LM   {it + k:4d}  loss {loss_new:.6g}  {time.perf_counter() - t_start:7.1f} s",
+                  file=log, flush=True)
+
+    if polish > 0 and float(jnp.linalg.norm(2.0 * (J.T @ aux[0]) / Nt)) >= gtol:
+        xl, _, _, (J, aux), _, k, _ = optim.levenberg_marquardt_host(
+            resid_jac, np.asarray(x), max_iter=polish, ftol=1e-6, floor=1e-4, on_accept=accepted,
+            usable=lambda extra: usable(loss_grad(*extra)[0], extra[1]),
+            start=(np.asarray(aux[0], float), np.asarray(J, float), (J, aux)))   # Adam's best: no solve again
+        x, loss, it = jnp.asarray(xl), float(jnp.sum(aux[0] ** 2) / Nt), it + k
+        history += lm_log
     r, r_t, tq, ok = aux
     if progress:
         print(f"  best  loss {loss:.6g} (start {loss0:.6g}) after {it} iterations, "

@@ -91,7 +91,8 @@ def _tensile(material, modulus, table):
     """E = 2 (1 + nu) G for a shear start material and a shear DMA table: the bearing scenes
     and the DMA term work with E."""
     import dataclasses
-    from .calibration import convert_modulus, tensile_over_shear
+    from .calibration import convert_modulus
+    from .evaluate import tensile_over_shear
     f = tensile_over_shear(material.nu)
     if modulus == "G":
         material = convert_modulus(material, f)

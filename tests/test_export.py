@@ -1,34 +1,54 @@
 """FEM exports (fitting.export, vjax-export, vjax-fit --export): every file is read back by an
-independent parser written here from each code's documented formulas, and the rebuilt shear
-relaxation modulus, bulk modulus and shift function are compared with the fitted material
-(vjax.Material.relaxation, the vjax shift law) to 1e-9 relative."""
+independent parser written here from each code's documented formulas (not from
+fitting/export.py), and the rebuilt shear relaxation modulus, bulk modulus, density and shift
+function are compared with the fitted material (vjax.Material.relaxation and vjax's shift
+laws) to 1e-10. The documented formulas (docs/fem_export.md cites the manuals):
+
+* Abaqus: G(t) = G_0 (1 - sum g_i (1 - exp(-t/tau_i))); reduced time d xi = dt / A,
+  log10 A = -C1 (th - th0)/(C2 + th - th0) or ln A = (E0/R)(1/(th - thZ) - 1/(th0 - thZ)).
+* ANSYS: G(t) = G_0 (1 - sum a_i + sum a_i exp(-t/tau_i)); WLF as Abaqus; TN (no fictive
+  temperature) ln A = H/R (1/T - 1/Tr), absolute temperatures T + TOFFST.
+* LS-DYNA *MAT_GENERAL_VISCOELASTIC: G(t) = sum GI exp(-BETAI t); reduced time t' = int Phi dt
+  with Phi = exp(-A (T - TREF)/(B + T - TREF)), or Phi = exp(-A (1/T - 1/TREF)) when B = 0;
+  a shift factor a_T stretches times, so a_T = 1/Phi.
+* COMSOL: G(t) = G_inf + sum G_m exp(-t/tau_m); WLF log10 a_T as above; Arrhenius
+  a_T = exp(Q/R (1/T - 1/T_ref)).
+"""
 import json
 import math
 import os
 import re
+from importlib.metadata import version
 
 import numpy as np
 import pytest
 
-from fitting import export, export_cli
+from fitting import dma, export, export_cli
 from fitting import cli as fit_cli
 from fitting.dma import default_data
 from vjax.material import Arrhenius, Material, WLF
 
 R = 8.314462618
-TOL = 1e-9
-UNIT_SCALE = {"SI": 1.0, "mm-N-s-MPa": 1e6}        # output stress unit -> Pa
+TOL = 1e-10
+UNIT_SCALE = {"SI": (1.0, 1.0), "mm-N-s-MPa": (1e6, 1e12)}        # output unit -> (Pa, kg/m^3)
+TAG = {"K": "K", "C": "degC"}
+SHIPPED = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_Eplexor_raw.xls")
 
 
-# ---- independent readers: each returns G(t) [Pa], K [Pa], log10 a_T(T in C) ---------------
-def _floats(line):
-    return [float(v) for v in line.replace(",", " ").split()]
+# ---- independent readers: each returns (terms (G_inf, G_i, tau_i) in Pa and s, K [Pa],
+# ---- density [kg/m^3] or None, log10 a_T(T in C)) ------------------------------------------
+def _in_file_T(Tc, path):
+    """Temperatures of the test (C) in the file's unit (its header says which)."""
+    unit = re.search(r"temperature (K|C)\b", open(path).read()).group(1)
+    return np.asarray(Tc, float) + (273.15 if unit == "K" else 0.0)
 
 
-def read_abaqus(path, to_pa):
-    """*ELASTIC instantaneous E, nu; *VISCOELASTIC g_i, k_i, tau_i with
-    g_R(t) = 1 - sum g_i (1 - exp(-t/tau_i)); *TRS WLF log10 A = -C1 (th - th0)/(C2 + th - th0)
-    or ARRHENIUS ln A = (E0/R)(1/(th - thZ) - 1/(th0 - thZ))."""
+def _wlf(Tc, Tr, C1, C2, path):
+    d = _in_file_T(Tc, path) - Tr
+    return -C1 * d / (C2 + d)
+
+
+def read_abaqus(path, to_pa, to_rho):
     blocks, key, consts = {}, None, {}
     for raw in open(path).read().splitlines():
         line = raw.strip()
@@ -41,36 +61,22 @@ def read_abaqus(path, to_pa):
             key = line.upper().replace(" ", "")
             blocks[key] = []
         else:
-            blocks[key].append(_floats(line))
+            blocks[key].append([float(v) for v in line.replace(",", " ").split()])
     (E, nu), = blocks["*ELASTIC,MODULI=INSTANTANEOUS"]
     G0, K0 = E / (2 * (1 + nu)) * to_pa, E / (3 * (1 - 2 * nu)) * to_pa
-    gkt = np.array(blocks["*VISCOELASTIC,TIME=PRONY"])
-    g, k, tau = gkt.T
+    g, k, tau = np.array(blocks["*VISCOELASTIC,TIME=PRONY"]).T
     assert np.all(k == 0)
-    G = lambda t: G0 * (1 - np.sum(g * (1 - np.exp(-np.asarray(t)[:, None] / tau)), axis=1))
+    rho = blocks["*DENSITY"][0][0] * to_rho if "*DENSITY" in blocks else None
+    terms = (G0 * (1 - g.sum()), G0 * g, tau)
     if "*TRS,DEFINITION=WLF" in blocks:
         (th0, C1, C2), = blocks["*TRS,DEFINITION=WLF"]
-        return G, K0, lambda Tc, th0=th0, C1=C1, C2=C2: _wlf(Tc, th0, C1, C2, path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, th0, C1, C2, path)
     (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
     thZ, Rg = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
-    return G, K0, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, path) - thZ) - 1 / (th0 - thZ)) / math.log(10)
+    return terms, K0, rho, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, path) - thZ) - 1 / (th0 - thZ)) / math.log(10)
 
 
-def _in_file_T(Tc, path):
-    """Temperatures of the test (C) in the file's unit (its header says which)."""
-    unit = re.search(r"temperature (K|C)", open(path).read()).group(1)
-    return np.asarray(Tc) + (273.15 if unit == "K" else 0.0)
-
-
-def _wlf(Tc, Tr, C1, C2, path):
-    d = _in_file_T(Tc, path) - Tr
-    return -C1 * d / (C2 + d)
-
-
-def read_ansys(path, to_pa):
-    """MP,EX/NUXY instantaneous; TB,PRONY SHEAR pairs a_i, tau_i with
-    G(t) = G0 (a_inf + sum a_i exp(-t/tau_i)), a_inf = 1 - sum a_i; TB,SHIFT WLF (Tr, C1, C2)
-    or TN (Tr, H/R, nf = 0: ln a_T = H/R (1/T - 1/Tr), absolute T = T + TOFFST)."""
+def read_ansys(path, to_pa, to_rho):
     mp, tables, cur, toff = {}, {}, None, 0.0
     for raw in open(path).read().splitlines():
         f = [s.strip() for s in raw.split("!")[0].split(",")]
@@ -92,81 +98,90 @@ def read_ansys(path, to_pa):
     p = tables[("PRONY", "SHEAR")]
     vals = np.array([p[i] for i in sorted(p)])
     a, tau = vals[0::2], vals[1::2]
-    G = lambda t: G0 * (1 - a.sum() + np.sum(a * np.exp(-np.asarray(t)[:, None] / tau), axis=1))
+    rho = mp["DENS"] * to_rho if "DENS" in mp else None
+    terms = (G0 * (1 - a.sum()), G0 * a, tau)
     if ("SHIFT", "WLF") in tables:
         s = tables[("SHIFT", "WLF")]
-        return G, K0, lambda Tc: _wlf(Tc, s[1], s[2], s[3], path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], path)
     s = tables[("SHIFT", "TN")]
     assert s[3] == 0
-    return G, K0, lambda Tc: s[2] * (1 / (_in_file_T(Tc, path) + toff) - 1 / (s[1] + toff)) / math.log(10)
+    return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, path) + toff) - 1 / (s[1] + toff)) / math.log(10)
 
 
-def read_lsdyna(path, to_pa):
-    """*MAT_GENERAL_VISCOELASTIC long format (20-character fields): card 1 MID, RO, BULK, PCF,
-    EF, TREF, A, B; card 2 LCID...; then GI, BETAI, KI, BETAKI per term:
-    G(t) = sum GI exp(-BETAI t); log10 a_T = -A (T - TREF) / (B + T - TREF)."""
+def read_lsdyna(path, to_pa, to_rho):
     lines = open(path).read().splitlines()
     i = next(j for j, l in enumerate(lines) if l.startswith("*MAT_GENERAL_VISCOELASTIC"))
-    assert lines[i].rstrip().endswith("+")
+    assert lines[i].rstrip().endswith("+")            # long format: 20-character fields
     cards = []
     for l in lines[i + 1:]:
         if l.startswith("*"):
             break
-        if l.startswith("$"):
-            continue
-        cards.append([float(l[j:j + 20]) if l[j:j + 20].strip() else 0.0 for j in range(0, len(l), 20)])
-    c1, c2, terms = cards[0], cards[1], np.array(cards[2:])
-    K, TREF, A, B = c1[2] * to_pa, c1[5], c1[6], c1[7]
-    assert c2[0] == 0 and np.all(terms[:, 2] == 0)
-    G = lambda t: to_pa * np.sum(terms[:, 0] * np.exp(-np.asarray(t)[:, None] * terms[:, 1]), axis=1)
-    return G, K, lambda Tc: _wlf(Tc, TREF, A, B, path)
+        if not l.startswith("$"):
+            cards.append([float(l[j:j + 20]) if l[j:j + 20].strip() else 0.0 for j in range(0, len(l), 20)])
+    c1, c2, t = cards[0], cards[1], np.array(cards[2:])
+    assert len(t) <= 6, "LS-DYNA reads at most six GI/BETAI cards"
+    rho, K, TREF, A, B = c1[1] * to_rho, c1[2] * to_pa, c1[5], c1[6], c1[7]
+    assert c2[0] == 0 and np.all(t[:, 2] == 0) and TREF > 0
+    long_term = t[:, 1] == 0
+    terms = (to_pa * t[long_term, 0].sum(), to_pa * t[~long_term, 0], 1.0 / t[~long_term, 1])
+
+    def log10_aT(Tc):
+        T = _in_file_T(Tc, path)
+        ln_phi = -A * (T - TREF) / (B + T - TREF) if B != 0 else -A * (1 / T - 1 / TREF)
+        return -ln_phi / math.log(10)            # a_T = 1/Phi
+    return terms, K, rho, log10_aT
 
 
-_COMSOL_UNITS = {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3, "": 1.0}
+_COMSOL_UNITS = {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3, "": 1.0,
+                 "kg/m^3": 1.0, "t/mm^3": 1e12}
 
 
-def read_comsol(path_params, path_branches, to_pa):
-    """name value[unit] "description" lines (units converted to SI here, temperatures to K)
-    and the branch file (number, G_i, tau_i). G(t) = G_inf + sum G_i exp(-t/tau_i); WLF
-    log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref) or Arrhenius ln a_T = Q/R (1/T - 1/T_ref)."""
+def read_comsol(path_params, path_branches, to_pa, to_rho):
     p = {}
-    for line in open(path_params).read().splitlines():
+    text = open(path_params).read()
+    assert "//" not in text and text.startswith("%")
+    for line in text.splitlines():
         m = re.match(r'^(\w+) ([-+0-9.eE]+)(?:\[([^\]]*)\])? "', line)
         if m:
             v, u = float(m.group(2)), m.group(3) or ""
             p[m.group(1)] = v + 273.15 if u == "degC" else v * _COMSOL_UNITS[u]
-    n = sum(1 for k in p if k.startswith("G_") and k != "G_inf")
+    n = sum(1 for k in p if re.fullmatch(r"G_\d+", k))
     Gi = np.array([p[f"G_{i}"] for i in range(1, n + 1)])
     tau = np.array([p[f"tau_{i}"] for i in range(1, n + 1)])
-    br = np.loadtxt(path_branches, ndmin=2)
+    br = np.loadtxt(path_branches, ndmin=2, comments="%")
+    assert open(path_branches).read().startswith("%")
     np.testing.assert_array_equal(br[:, 0], np.arange(1, n + 1))
-    scale = 1e6 if "[MPa]" in open(path_params).read() else 1.0
-    np.testing.assert_allclose(br[:, 1] * scale, Gi, rtol=1e-14)
+    np.testing.assert_allclose(br[:, 1] * to_pa, Gi, rtol=1e-14)
     np.testing.assert_allclose(br[:, 2], tau, rtol=1e-14)
-    G = lambda t: p["G_inf"] + np.sum(Gi * np.exp(-np.asarray(t)[:, None] / tau), axis=1)
     Tk = lambda Tc: np.asarray(Tc) + 273.15
     if "C1" in p:
-        return G, p["K_bulk"], lambda Tc: -p["C1"] * (Tk(Tc) - p["T_ref"]) / (p["C2"] + Tk(Tc) - p["T_ref"])
-    return G, p["K_bulk"], lambda Tc: p["Q"] / R * (1 / Tk(Tc) - 1 / p["T_ref"]) / math.log(10)
+        la = lambda Tc: -p["C1"] * (Tk(Tc) - p["T_ref"]) / (p["C2"] + Tk(Tc) - p["T_ref"])
+    else:
+        la = lambda Tc: p["Q"] / R * (1 / Tk(Tc) - 1 / p["T_ref"]) / math.log(10)
+    return (p["G_inf"], Gi, tau), p["K_bulk"], p.get("rho"), la
 
 
-def read_back(fmt, out_dir, stem, units):
-    to_pa = UNIT_SCALE[units]
-    base = os.path.join(out_dir, stem)
-    if fmt == "abaqus":
-        return read_abaqus(base + "_abaqus.inp", to_pa)
-    if fmt == "ansys":
-        return read_ansys(base + "_ansys.mac", to_pa)
-    if fmt == "lsdyna":
-        return read_lsdyna(base + "_lsdyna.k", to_pa)
-    return read_comsol(base + "_comsol_parameters.txt", base + "_comsol_branches.txt", to_pa)
+def card_paths(fmt, out_dir, stem, temperature):
+    base = os.path.join(out_dir, f"{stem}_{fmt}_{TAG[temperature]}")
+    return ((base + "_parameters.txt", base + "_branches.txt") if fmt == "comsol"
+            else (base + {"abaqus": ".inp", "ansys": ".mac", "lsdyna": ".k"}[fmt],))
 
 
-# ---- the fitted material, in vjax' own terms ---------------------------------------------
-def _reference(d, nu, K=None):
-    """(G(t), K, log10 a_T(T)) of the material JSON ``d`` through vjax' Material and shift laws."""
+def read_back(fmt, out_dir, stem, units, temperature):
+    reader = {"abaqus": read_abaqus, "ansys": read_ansys, "lsdyna": read_lsdyna, "comsol": read_comsol}[fmt]
+    return reader(*card_paths(fmt, out_dir, stem, temperature), *UNIT_SCALE[units])
+
+
+def prony_G(terms):
+    G_inf, G, tau = terms
+    return lambda t: G_inf + np.sum(G * np.exp(-np.asarray(t, float)[:, None] / tau), axis=1)
+
+
+# ---- the fitted material, in vjax's own terms ---------------------------------------------
+def _reference(d, nu, K=None, law=None):
+    """(G(t), K, log10 a_T(T)) of the material JSON ``d`` through vjax's Material and shift laws."""
     mat = Material.prony(d["E0"], np.array(d["moduli"]), np.array(d["times"]), 0.3)
-    s = d["shift"]
+    s = law or d["shift"]
     law = WLF(s["C1"], s["C2"], s["T_ref"]) if s["law"] == "WLF" else Arrhenius(s["Ea"], s["T_ref"])
     f = 1 / (2 * (1 + nu)) if d.get("modulus", "E") == "E" else 1.0
     G = lambda t: np.asarray(mat.relaxation(np.asarray(t))) * f
@@ -174,16 +189,19 @@ def _reference(d, nu, K=None):
     return G, Kref, lambda T: np.asarray(law.log10_aT(np.asarray(T)))
 
 
-def _check(d, fmt, out_dir, stem, units, nu, K=None):
-    G, Kb, la = read_back(fmt, out_dir, stem, units)
-    Gr, Kr, lar = _reference(d, nu, K)
+def _check(d, fmt, out_dir, stem, units, nu, temperature, K=None, rho=None, law=None, T=None):
+    terms, Kb, rho_b, la = read_back(fmt, out_dir, stem, units, temperature)
+    Gr, Kr, lar = _reference(d, nu, K, law)
     tau = np.array(d["times"])
     t = np.concatenate([[0.0], np.logspace(np.log10(tau.min()) - 2, np.log10(tau.max()) + 2, 200)])
-    np.testing.assert_allclose(G(t), Gr(t), rtol=TOL, err_msg=f"{fmt} {units}: shear relaxation modulus")
+    np.testing.assert_allclose(prony_G(terms)(t), Gr(t), rtol=TOL, err_msg=f"{fmt} {units}: shear relaxation modulus")
     assert abs(Kb / Kr - 1) < TOL, (fmt, units, Kb, Kr)
-    s = d["shift"]
-    lo = s["T_ref"] - 0.8 * s["C2"] if s["law"] == "WLF" else -60.0
-    T = np.linspace(max(lo, -100.0), s["T_ref"] + 120, 57)
+    if rho is not None:
+        assert abs(rho_b / rho - 1) < TOL, (fmt, units, rho_b, rho)
+    s = law or d["shift"]
+    if T is None:
+        lo = s["T_ref"] - 0.8 * s["C2"] if s["law"] == "WLF" else -60.0
+        T = np.linspace(max(lo, -100.0), s["T_ref"] + 120, 57)
     np.testing.assert_allclose(la(T), lar(T), rtol=TOL, atol=TOL * np.max(np.abs(lar(T))),
                                err_msg=f"{fmt} {units}: log10 a_T")
 
@@ -205,28 +223,64 @@ def _write(tmp_path, d, name="mat"):
 @pytest.mark.parametrize("d", [WLF_MAT, ARR_MAT], ids=["WLF", "Arrhenius"])
 def test_every_format_reads_back(tmp_path, d, units, temperature):
     path = _write(tmp_path, d)
-    fmts = [f for f in export.FORMATS if not (f == "lsdyna" and d["shift"]["law"] != "WLF")]
-    assert export_cli.main([path, "--format", ",".join(fmts), "--nu", "0.42", "--units", units,
-                            "--temperature", temperature]) == 0
+    # LS-DYNA's Arrhenius form takes absolute temperatures only
+    fmts = [f for f in export.FORMATS if not (f == "lsdyna" and d["shift"]["law"] != "WLF" and temperature == "C")]
+    assert export_cli.main([path, "--format", ",".join(fmts), "--nu", "0.42", "--units", units, "--full-spectrum",
+                            "--temperature", temperature, "--density", "1150"]) == 0
     for fmt in fmts:
-        _check(d, fmt, str(tmp_path), "mat", units, nu=0.42)
+        _check(d, fmt, str(tmp_path), "mat", units, 0.42, temperature, rho=1150.0)
+
+
+def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch):
+    """The LS-DYNA check can fail: with the base-10 constant A = C1 written (the old card),
+    the documented Phi puts log10 a_T 10 decades off at -20 C; the reader sees it."""
+    path = _write(tmp_path, dict(WLF_MAT, shift=dict(WLF_MAT["shift"], C1=17.4, C2=51.6)))
+    args = [path, "--format", "lsdyna", "--nu", "0.42", "--temperature", "K", "--density", "1150", "--full-spectrum"]
+    d = json.loads(open(path).read())
+    assert export_cli.main(args) == 0
+    _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
+    monkeypatch.setattr(export, "lsdyna_shift", lambda m, T_unit: (m.T_ref + 273.15, m.shift["C1"], m.shift["C2"]))
+    assert export_cli.main(args) == 0
+    with pytest.raises(AssertionError, match="log10 a_T"):
+        _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
 
 
 def test_bulk_modulus_and_shear_material(tmp_path):
     d = dict(WLF_MAT, modulus="G", nu=0.5)
     path = _write(tmp_path, d)
-    assert export_cli.main([path, "--format", "all", "--bulk-modulus", "2.5e9", "--units", "mm-N-s-MPa"]) == 0
+    assert export_cli.main([path, "--format", "all", "--bulk-modulus", "2.5e9", "--units", "mm-N-s-MPa",
+                            "--temperature", "K", "--density", "900", "--full-spectrum"]) == 0
     for fmt in export.FORMATS:
-        _check(d, fmt, str(tmp_path), "mat", "mm-N-s-MPa", nu=0.3, K=2.5e9)   # G material: nu unused
+        _check(d, fmt, str(tmp_path), "mat", "mm-N-s-MPa", 0.3, "K", K=2.5e9, rho=900.0)   # G material: nu unused
+
+
+def test_evaluate_card_round_trip(tmp_path):
+    """fitting.export.evaluate_card gives back what the independent readers read, and follows
+    an edited card."""
+    path = _write(tmp_path, WLF_MAT)
+    assert export_cli.main([path, "--format", "all", "--nu", "0.4", "--temperature", "C", "--density", "1000",
+                            "--units", "mm-N-s-MPa", "--full-spectrum"]) == 0
+    t, T = np.logspace(-9, 4, 40), np.array([-20.0, 25.0, 80.0])
+    for fmt in export.FORMATS:
+        terms, K, _, la = read_back(fmt, str(tmp_path), "mat", "mm-N-s-MPa", "C")
+        card = export.evaluate_card(card_paths(fmt, str(tmp_path), "mat", "C")[0])
+        assert card.code == fmt and card.terms == 5 and card.temperature == "C"
+        np.testing.assert_allclose(card.G(t), prony_G(terms)(t), rtol=1e-12)
+        np.testing.assert_allclose(card.log10_aT(T), la(T), rtol=1e-12, atol=1e-12)
+        assert abs(card.K / K - 1) < 1e-12
+    ansys = card_paths("ansys", str(tmp_path), "mat", "C")[0]
+    text = open(ansys).read()
+    open(ansys, "w").write(text.replace(",12.3,", ",10,"))         # an engineer edits C1
+    assert abs(export.evaluate_card(ansys).log10_aT([-20.0])[0] - 10 * 45 / (141.7 - 45)) < 1e-12
 
 
 def test_incompressible_refused_with_reason(tmp_path, capsys):
     path = _write(tmp_path, WLF_MAT)      # nu = 0.5 in the file
-    assert export_cli.main([path, "--format", "abaqus"]) == 1
+    assert export_cli.main([path, "--format", "abaqus", "--temperature", "K"]) == 1
     err = capsys.readouterr().err
     assert "infinite bulk modulus" in err and "--bulk-modulus" in err
-    assert export_cli.main([path, "--format", "abaqus", "--nu", "0.5"]) == 2
-    assert export_cli.main([path, "--format", "nastran", "--nu", "0.4"]) == 2
+    assert export_cli.main([path, "--format", "abaqus", "--nu", "0.5", "--temperature", "K"]) == 2
+    assert export_cli.main([path, "--format", "nastran", "--nu", "0.4", "--temperature", "K"]) == 2
     assert "unknown export format" in capsys.readouterr().err
     assert not [p for p in os.listdir(tmp_path) if not p.endswith(".json")]
 
@@ -236,62 +290,166 @@ def test_table_law_names_the_alternative(tmp_path, capsys):
     d = dict(WLF_MAT, nu=0.45, shift={"law": "table", "T": [0.0, 25.0, 60.0], "log10_aT": [2.1, 0.0, -2.5],
                                       "T_ref": 25.0}, shift_alternatives=[alt])
     path = _write(tmp_path, d)
-    assert export_cli.main([path, "--format", "ansys"]) == 1
+    opts = ["--temperature", "K", "--full-spectrum"]
+    assert export_cli.main([path, "--format", "ansys"] + opts) == 1
     err = capsys.readouterr().err
     assert "table" in err and "C1 = 9.5" in err and "--shift-law WLF" in err
-    assert export_cli.main([path, "--format", "ansys", "--shift-law", "WLF"]) == 0
-    _check(dict(d, shift=alt), "ansys", str(tmp_path), "mat", "SI", nu=0.45)
+    assert export_cli.main([path, "--format", "ansys", "--shift-law", "WLF"] + opts) == 0
+    _check(dict(d, shift=alt), "ansys", str(tmp_path), "mat", "SI", 0.45, "K")
     shifted = _write(tmp_path, dict(d, shift_alternatives=[dict(alt, T_ref=30.0)]), "shifted")
-    assert export_cli.main([shifted, "--format", "ansys", "--shift-law", "WLF"]) == 1
+    assert export_cli.main([shifted, "--format", "ansys", "--shift-law", "WLF"] + opts) == 1
     assert "refers to T_ref = 30.0 C" in capsys.readouterr().err
     bare = _write(tmp_path, dict(d, shift_alternatives=None), "bare")
-    assert export_cli.main([bare, "--format", "ansys"]) == 1
+    assert export_cli.main([bare, "--format", "ansys"] + opts) == 1
     assert "refit with vjax-fit --law WLF" in capsys.readouterr().err
 
 
-def test_refusals_write_nothing(tmp_path, capsys):
-    path = _write(tmp_path, dict(ARR_MAT, nu=0.4))
-    assert export_cli.main([path, "--format", "abaqus,lsdyna"]) == 1      # MAT_076: WLF only
-    assert "only the WLF shift" in capsys.readouterr().err
-    assert export_cli.main([path, "--format", "abaqus", "--max-terms", "3"]) == 1
-    assert "refit with vjax-fit --max-terms 3" in capsys.readouterr().err
-    assert sorted(os.listdir(tmp_path)) == ["mat.json"]
-    assert export_cli.main([path, "--format", "abaqus", "--out-dir", str(tmp_path / "missing")]) == 1
+def test_refusals_say_what_to_add_and_write_nothing(tmp_path, capsys):
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    # no temperature scale: refused before anything is fitted or written, in the CLI and the API
+    assert export_cli.main([path, "--format", "abaqus"]) == 2
+    assert "add --temperature K or --temperature C" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="temperature 'K' or 'C'"):
+        export.export(export.load(path), "abaqus", str(tmp_path), "mat")
+    # LS-DYNA without a density: nothing written, not even the Abaqus file rendered before it
+    assert export_cli.main([path, "--format", "abaqus,lsdyna", "--temperature", "K", "--full-spectrum"]) == 1
+    assert "add --density" in capsys.readouterr().err
+    arr = _write(tmp_path, dict(ARR_MAT, nu=0.4), "arr")
+    assert export_cli.main([arr, "--format", "abaqus,lsdyna", "--temperature", "C", "--density", "1000",
+                            "--full-spectrum"]) == 1
+    assert "absolute temperatures: use --temperature K" in capsys.readouterr().err
+    assert export_cli.main([path, "--format", "abaqus", "--max-terms", "3", "--full-spectrum",
+                            "--temperature", "K"]) == 1
+    assert "drop --full-spectrum" in capsys.readouterr().err
+    assert sorted(os.listdir(tmp_path)) == ["arr.json", "mat.json"]
+    assert export_cli.main([path, "--format", "abaqus", "--out-dir", str(tmp_path / "missing"),
+                            "--temperature", "K"]) == 1
+
+
+# ---- fitted materials: the shipped example ---------------------------------------------------
+def _data_errors(terms, nu, d, table):
+    """Median |log10(model/measured)| of storage and loss of a shear series read from a card,
+    as the data's tensile modulus, under the JSON's WLF law (numpy, written here)."""
+    G_inf, G, tau = terms
+    s = d["shift"]
+    wr = table.omega * 10.0 ** (-s["C1"] * (table.T - s["T_ref"]) / (s["C2"] + table.T - s["T_ref"]))
+    iwt = 1j * wr[:, None] * tau
+    E = 2 * (1 + nu) * (G_inf + np.sum(G * iwt / (1 + iwt), axis=1))
+    return (float(np.median(np.abs(np.log10(E.real / table.storage)))),
+            float(np.median(np.abs(np.log10(E.imag / table.loss))))), wr
 
 
 @pytest.fixture(scope="module")
-def shipped_fit(tmp_path_factory):
-    """vjax-fit on the shipped pyvisco example (its Eplexor .xls export) with --export all (WLF, nu = 0.45)."""
+def shipped(tmp_path_factory):
+    """vjax-fit on the shipped pyvisco example (its Eplexor .xls export), WLF, nu = 0.45, with
+    the default FEM export of every code (compact series; LS-DYNA's six cards)."""
     out = tmp_path_factory.mktemp("shipped") / "pyvisco.json"
-    code = fit_cli.main([os.path.join(os.path.dirname(default_data("pyvisco")), "freq_Eplexor_raw.xls"), "--tref", "25", "--law", "WLF", "--out", str(out), "--nu", "0.45",
-                         "--export", "all", "--no-plots", "--no-cache"])
+    code = fit_cli.main([SHIPPED, "--tref", "25", "--law", "WLF", "--out", str(out), "--nu", "0.45",
+                         "--export", "all", "--temperature", "C", "--density", "1200", "--no-plots", "--no-cache"])
     assert code == 0
-    return out
+    return out, json.loads(out.read_text()), dma.read([SHIPPED])
 
 
-def test_shipped_example_exports_read_back(shipped_fit, tmp_path):
-    d = json.loads(shipped_fit.read_text())
-    assert len(d["times"]) > 10
-    for fmt in export.FORMATS:
-        _check(d, fmt, str(shipped_fit.parent), "pyvisco", "SI", nu=0.45)
-    assert export_cli.main([str(shipped_fit), "--format", "all", "--units", "mm-N-s-MPa", "--out-dir", str(tmp_path),
-                            "--nu", "0.45"]) == 0
-    for fmt in export.FORMATS:
-        _check(d, fmt, str(tmp_path), "pyvisco", "mm-N-s-MPa", nu=0.45)
+def test_shipped_compact_series_keeps_the_fit_accuracy(shipped):
+    out, d, table = shipped
+    assert len(d["times"]) > 50
+    (full_s, full_l), wr = _data_errors((d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"])),
+                                        0.45, d, table)
+    for fmt in ("abaqus", "ansys", "comsol"):
+        terms, _, rho, _ = read_back(fmt, str(out.parent), "pyvisco", "SI", "C")
+        assert len(terms[1]) <= 20 and rho == 1200.0, fmt
+        (es, el), _ = _data_errors(terms, 0.45, d, table)
+        assert es <= 1.5 * full_s and el <= 1.5 * full_l, (fmt, es, full_s, el, full_l)
+        # relaxation times within the data's reduced-time window plus half a decade
+        assert terms[2].min() >= 10 ** -0.5 / wr.max() and terms[2].max() <= 10 ** 0.5 / wr.min(), fmt
+    head = open(card_paths("abaqus", str(out.parent), "pyvisco", "C")[0]).read()
+    assert SHIPPED in head and f"vjax {version('vjax')}" in head
+    assert f"storage {d['fit']['errors']['storage_median']:.4f}" in head
+    assert "temperature C" in head and "density 1200 kg/m^3" in head
+
+
+@pytest.mark.parametrize("law", ["WLF", "Arrhenius"])
+def test_shipped_fit_every_code_by_its_formula(shipped, tmp_path, law):
+    """The fitted material itself (--full-spectrum; Arrhenius: the fit's alternative), every
+    code: G(t) over the data's times and log10 a_T at three temperatures to 1e-10. LS-DYNA
+    gets its six-card refit, so there only the shift law is compared."""
+    out, d, _ = shipped
+    shift = d["shift"] if law == "WLF" else dict(d["shift_alternatives"]["Arrhenius"], law="Arrhenius")
+    assert export_cli.main([str(out), "--format", "all", "--nu", "0.45", "--temperature", "K", "--density", "1200",
+                            "--shift-law", law, "--full-spectrum", "--out-dir", str(tmp_path)]) == 0
+    T = [-20.0, 25.0, 80.0]
+    for fmt in ("abaqus", "ansys", "comsol"):
+        _check(d, fmt, str(tmp_path), "pyvisco", "SI", 0.45, "K", rho=1200.0, law=shift, T=T)
+    _, _, rho, la = read_back("lsdyna", str(tmp_path), "pyvisco", "SI", "K")
+    lar = _reference(d, 0.45, law=shift)[2]
+    np.testing.assert_allclose(la(T), lar(T), rtol=TOL, atol=TOL)
+    assert rho == 1200.0
+
+
+def test_shipped_lsdyna_six_cards_and_stated_accuracy(shipped, tmp_path):
+    """LS-DYNA gets the best 5 terms + G_inf over a window; the deviation from the full fit
+    its header states is the one measured here, and a narrower --window holds the fit better."""
+    out, d, _ = shipped
+    full = lambda t: (d["E0"] + np.sum(np.array(d["moduli"]) * np.exp(-np.asarray(t)[:, None] / d["times"]),
+                                       axis=1)) / 2.9
+    stated = []
+    for folder, window in ((str(out.parent), None), (str(tmp_path), "1e-4,1e2")):
+        if window:
+            assert export_cli.main([str(out), "--format", "lsdyna", "--nu", "0.45", "--temperature", "C",
+                                    "--density", "1200", "--window", window, "--out-dir", folder]) == 0
+        terms, _, rho, la = read_back("lsdyna", folder, "pyvisco", "SI", "C")
+        assert len(terms[1]) == 5 and rho == 1200.0
+        Gr, _, lar = _reference(d, 0.45)
+        np.testing.assert_allclose(la([-20.0, 25.0, 80.0]), lar([-20.0, 25.0, 80.0]), rtol=TOL, atol=TOL)
+        text = open(card_paths("lsdyna", folder, "pyvisco", "C")[0]).read()
+        lo, hi = (float(v) for v in re.search(r"reduced angular frequency (\S+) to (\S+) rad/s", text).groups())
+        w = np.logspace(np.log10(lo), np.log10(hi), 400)
+        G_inf, G, tau = terms
+        iwt = 1j * w[:, None] * tau
+        card = G_inf + np.sum(G * iwt / (1 + iwt), axis=1)
+        iwt = 1j * w[:, None] * np.array(d["times"])
+        ref = (d["E0"] + np.sum(np.array(d["moduli"]) * iwt / (1 + iwt), axis=1)) / 2.9
+        dev = np.median(np.abs(np.log10(card.real / ref.real)))
+        said = float(re.search(r"storage median ([0-9.]+)", text).group(1))
+        assert abs(said - dev) < 0.003, (said, dev)       # the header's 4 decimals, another sampling
+        stated.append(dev)
+        if window:
+            t = np.logspace(-4, 2, 50)
+            assert np.max(np.abs(np.log10(prony_G(terms)(t) / full(t)))) < 0.05
+    assert stated[1] < stated[0] / 3
+
+
+def test_compact_without_the_data_uses_the_recorded_errors(shipped, tmp_path, capsys):
+    """DMA files moved away: the compact series is held to the fit's recorded errors (its
+    deviation from the full fit), and the output says which basis and whether it held."""
+    _, d, table = shipped
+    path = _write(tmp_path, dict(d, fit=dict(d["fit"], inputs=[str(tmp_path / "moved.xls")])), "moved")
+    assert export_cli.main([path, "--format", "ansys", "--nu", "0.45", "--temperature", "K"]) == 0
+    out = capsys.readouterr().out
+    assert "median deviation from the full fit over the data window" in out
+    terms, *_ = read_back("ansys", str(tmp_path), "moved", "SI", "K")
+    assert len(terms[1]) <= 20
+    text = open(card_paths("ansys", str(tmp_path), "moved", "K")[0]).read()
+    assert "source DMA data: " + str(tmp_path / "moved.xls") in text
+    assert ("holds the full fit's accuracy" in text) != ("does NOT hold" in text)
 
 
 def test_fit_cli_table_law_keeps_the_fit_and_explains(tmp_path, capsys):
     out = tmp_path / "m.json"
     table = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_user_raw.csv")
     code = fit_cli.main([table, "--tref", "25", "--law", "table", "--out", str(out), "--nu", "0.45",
-                         "--export", "abaqus", "--no-plots"])
-    assert code == 1 and out.exists() and not (tmp_path / "m_abaqus.inp").exists()
+                         "--export", "abaqus", "--temperature", "K", "--no-plots"])
+    assert code == 1 and out.exists() and not list(tmp_path.glob("m_abaqus*"))
     cap = capsys.readouterr()
     assert "wrote " + str(out) in cap.out and "no FEM export" in cap.err and "table of shift factors" in cap.err
 
 
 def test_fit_cli_checks_export_options_first(tmp_path, capsys):
     out = str(tmp_path / "m.json")
-    assert fit_cli.main([default_data("pyvisco"), "--tref", "25", "--out", out, "--export", "abaqus"]) == 2
+    assert fit_cli.main([default_data("pyvisco"), "--tref", "25", "--out", out, "--export", "abaqus",
+                         "--temperature", "K"]) == 2
     assert "infinite bulk modulus" in capsys.readouterr().err
+    assert fit_cli.main([default_data("pyvisco"), "--tref", "25", "--out", out, "--export", "abaqus",
+                         "--nu", "0.45"]) == 2
+    assert "--temperature" in capsys.readouterr().err
     assert not os.path.exists(out)

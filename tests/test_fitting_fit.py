@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from vjax import Arrhenius, Material, WLF
-from fitting import _optim, calibrate, cli, dma, io, master, prony, spectrum
+from fitting import optim, calibrate, cli, dma, io, master, prony, spectrum
 
 TRUE_WLF = WLF(10.0, 120.0, 30.0)
 
@@ -83,10 +83,10 @@ def test_nnls_matches_known_solution():
     rng = np.random.default_rng(3)
     A = rng.random((200, 12))
     x_true = np.where(rng.random(12) < 0.5, 0.0, rng.random(12))
-    x, res = _optim.nnls(A, A @ x_true)
+    x, res = optim.nnls(A, A @ x_true)
     assert np.allclose(x, x_true, atol=1e-9) and res < 1e-9
     # an active constraint: the unconstrained optimum is negative
-    x, _ = _optim.nnls(np.eye(2), np.array([1.0, -1.0]))
+    x, _ = optim.nnls(np.eye(2), np.array([1.0, -1.0]))
     assert np.allclose(x, [1.0, 0.0])
 
 

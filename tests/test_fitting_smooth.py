@@ -65,8 +65,8 @@ def test_shift_law_values_and_written_out_jacobian(kind, T_ref):
         q = np.asarray(p[:4])      # the table's interpolant in numpy (fitting.evaluate), not the JAX one
         want = q - evaluate.log10_aT(master.ShiftTable(np.asarray(Ts), q, T_ref), T_ref)
     for k in (code, jnp.asarray(code)):
-        L, J = prony._law_eval(k, p, Ts, T_ref, c2min)
-        J_ad = jax.jacfwd(lambda q: prony._law_eval(k, q, Ts, T_ref, c2min)[0])(p)
+        L, J = prony.law_eval(k, p, Ts, T_ref, c2min)
+        J_ad = jax.jacfwd(lambda q: prony.law_eval(k, q, Ts, T_ref, c2min)[0])(p)
         np.testing.assert_allclose(L, want, rtol=1e-12, atol=1e-12)
         np.testing.assert_allclose(J, J_ad, rtol=1e-12, atol=1e-12)
 

@@ -1,0 +1,253 @@
+"""Compact Prony series for finite-element codes: the fewest terms that keep a fit's accuracy.
+
+A smooth spectrum (:mod:`fitting.spectrum`) puts three relaxation times in every decade of
+the data's reduced range plus a decade each side: 60 to 100 terms, each of which is internal
+state at every integration point of an FEM model. Over the data's window far fewer hold
+the same accuracy. :func:`fit_terms` fits ``n`` terms with free relaxation times to the full
+series' storage and loss moduli (log residuals, both with weight one, at
+``SAMPLES_PER_DECADE`` reduced frequencies a decade over the window), Levenberg-Marquardt
+from a non-negative least-squares start at log-spaced times (:mod:`fitting.optim`); a penalty
+keeps every relaxation time within the window's reduced-time range widened by
+``MARGIN_DECADES``, so no term relaxes where nothing was measured (never 1e-20 s).
+
+How the count is chosen (:func:`choose`): the smallest n up to ``max_terms`` (default
+``MAX_TERMS`` = 20; found by bisection, accuracy growing with n nearly monotonically) whose
+series
+
+* is as accurate as the full fit within ``TOLERANCE``: its median |log10(model/measured)| on
+  the DMA points is at most ``TOLERANCE`` (1.5) times the full fit's, for storage and loss
+  separately (relaxation data: for E(t)); without the data, its median deviation from the full
+  fit over the window is at most ``TOLERANCE - 1`` times the full fit's median error recorded
+  in the material JSON (a deviation d adds at most |d| to each point's error), and
+* is smooth: its loss modulus has at most ``MAX_EXTREMA`` (3) local extrema over the window
+  (or no more than the full fit's, if that has more),
+
+is kept (``met`` True). If none up to ``max_terms`` qualifies, the smallest accurate one is
+kept, or ``max_terms`` terms if none is accurate, and :class:`Choice` says so (``met`` False).
+Over many decades few terms cannot give a loss modulus free of ripple: each term's loss peak
+is 1.14 decades wide (half height), and terms 1.35 decades apart (20 over 27 decades) leave
+a ripple of about +-8 % whose every wiggle is a local extremum; smoothness in that strict
+sense takes about 3 terms a decade (the smooth fit's grid).
+
+Moduli are in the series' own unit (Pa), times in s, frequencies in rad/s (reduced, at the
+material's T_ref).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from . import optim
+from .evaluate import loss_extrema
+
+__all__ = ["Series", "Choice", "fit_terms", "choose", "deviation", "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES",
+           "MAX_EXTREMA"]
+
+MAX_TERMS = 20
+TOLERANCE = 1.5
+MARGIN_DECADES = 0.5
+MAX_EXTREMA = 3
+SAMPLES_PER_DECADE = 10
+ROBUST = 0.03         # decades, as fitting.calibration.ROBUST
+DATA_FIT = dict(robust=ROBUST, weights=(4.0, 1.0))   # fits to DMA points: storage 4:1 (docs/fem_export.md)
+LN10 = math.log(10.0)
+
+
+@dataclasses.dataclass(frozen=True)
+class Series:
+    """A Prony series M(t) = E0 + sum_k moduli_k exp(-t / times_k): E0 and moduli in the
+    modulus' unit (Pa), times in s, times increasing (the attribute names of
+    :class:`vjax.Material`, so :mod:`fitting.evaluate` takes it as it is)."""
+
+    E0: float
+    moduli: np.ndarray
+    times: np.ndarray
+
+    def scaled(self, factor) -> "Series":
+        """Every modulus times ``factor`` (e.g. shear to tensile)."""
+        return Series(self.E0 * factor, self.moduli * factor, self.times)
+
+
+@dataclasses.dataclass(frozen=True)
+class Choice:
+    """What :func:`choose` kept: ``series``; ``met``: it meets the criterion (accurate and
+    smooth); ``accurate``: it holds the accuracy; ``errors`` (its accuracy, same keys as
+    ``reference``: the full fit's errors on the data), ``extrema`` (loss modulus over the
+    window), ``basis`` ('data': errors on the DMA points, or 'full fit': deviations from it),
+    ``tried``: rows (terms, errors, extrema) of each count tried."""
+
+    series: Series
+    met: bool
+    accurate: bool
+    errors: dict
+    reference: dict
+    extrema: int
+    basis: str
+    tried: tuple
+
+
+def _cauchy(r, c):
+    """Residuals whose sum of squares is the Cauchy loss sum c^2 ln(1 + (r/c)^2), and their
+    derivative with respect to r (1 at r = 0)."""
+    u = r / c
+    L = np.log1p(u * u)
+    small = np.abs(u) < 1e-8
+    root = np.sqrt(np.where(small, 1.0, L))
+    return np.where(small, r, np.sign(r) * c * root), np.where(small, 1.0, np.abs(u) / ((1 + u * u) * root))
+
+
+def _arms(w, tau):
+    z = w[:, None] * tau[None, :]
+    den = 1.0 + z * z
+    ps, pl = z * z / den, z / den
+    return ps, pl, 2.0 * ps / den, pl * (1.0 - z * z) / den
+
+
+def _moduli(series: Series, w):
+    ps, pl, _, _ = _arms(w, np.asarray(series.times, float))
+    Ek = np.asarray(series.moduli, float)
+    return series.E0 + ps @ Ek, pl @ Ek
+
+
+def _samples(window):
+    lo, hi = (math.log10(v) for v in window)
+    return 10.0 ** np.linspace(lo, hi, max(int(math.ceil((hi - lo) * SAMPLES_PER_DECADE)) + 1, 40))
+
+
+def deviation(series: Series, full: Series, window) -> dict:
+    """|log10(series / full)| of storage and loss over ``window`` (rad/s): median and max."""
+    w = _samples(window)
+    (s1, l1), (s0, l0) = _moduli(series, w), _moduli(full, w)
+    ds, dl = np.abs(np.log10(s1 / s0)), np.abs(np.log10(l1 / l0))
+    return {"storage_median": float(np.median(ds)), "storage_max": float(ds.max()),
+            "loss_median": float(np.median(dl)), "loss_max": float(dl.max())}
+
+
+def _kernel(kind, x, tau):
+    """Response of unit arms (times ``tau``) at ``x`` and its derivative with respect to
+    ln tau, and whether the long-term modulus adds: storage and loss at angular frequency x,
+    relaxation E(t) at time x."""
+    if kind == "relaxation":
+        z = x[:, None] / tau[None, :]
+        p = np.exp(-z)
+        return p, z * p, True
+    ps, pl, dps, dpl = _arms(x, tau)
+    return (ps, dps, True) if kind == "storage" else (pl, dpl, False)
+
+
+def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, target=None,
+              robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100) -> Series:
+    """The ``n``-term series (plus a long-term modulus E0) closest in log modulus to
+    ``target``: the DMA points under the material's shift law, (omega, storage, loss) (reduced
+    rad/s, Pa) or ('time', t, E) (reduced s, Pa); without it ``full``'s storage and loss over
+    ``window`` = (omega_min, omega_max) (rad/s, reduced). Relaxation times stay within
+    [1/omega_max, 1/omega_min] widened by ``margin`` decades (module docstring). ``robust``:
+    scale (decades) of the Cauchy loss on the data's residuals (0: least squares), as the
+    calibration's (a few inconsistent points do not bend the series); ``weights``: of the
+    storage and loss residuals."""
+    if not (isinstance(n, int) and n >= 1):
+        raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
+    lo, hi = (float(v) for v in window)
+    if not (0 < lo < hi and math.isfinite(hi)):
+        raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
+    if target is None:
+        w = _samples((lo, hi))
+        st, ls = _moduli(full, w)
+        parts = [("storage", w, st, 1.0), ("loss", w, ls, 1.0)]
+    elif isinstance(target[0], str):          # ("time", t, E)
+        parts = [("relaxation", np.asarray(target[1], float), np.asarray(target[2], float), 1.0)]
+    else:
+        w, st, ls = (np.asarray(v, float) for v in target)
+        parts = [("storage", w, st, weights[0]), ("loss", w, ls, weights[1])]
+    scale = float(max(np.max(p[2]) for p in parts))
+    lt_lo, lt_hi = -math.log(hi) - margin * LN10, -math.log(lo) + margin * LN10
+    ltau = np.linspace(-math.log(hi), -math.log(lo), n) if n > 1 else np.array([-0.5 * math.log(lo * hi)])
+    # start: non-negative moduli at these times (relative residuals)
+    rows = []
+    for kind, x, y, _ in parts:
+        k, _, e0 = _kernel(kind, x, np.exp(ltau))
+        rows.append(np.hstack([np.full((len(x), 1), float(e0)), k]) / y[:, None])
+    A = np.vstack(rows)
+    x0, _ = optim.nnls(A, np.ones(A.shape[0]))
+    x = np.concatenate([np.log(np.maximum(x0, 1e-9 * scale) / scale), ltau])
+    pen = 10.0
+
+    def resid_jac(x):
+        E0, Ek, lt = math.exp(x[0]), np.exp(x[1:n + 1]), x[n + 1:]
+        rs, Js = [], []
+        for kind, xs, y, wt in parts:
+            k, dk, e0 = _kernel(kind, xs, np.exp(lt))
+            model = k @ Ek + (E0 if e0 else 0.0)
+            c = wt / (LN10 * model)
+            rs.append(wt * np.log10(model * scale / y))
+            Js.append(np.hstack([(c * E0 * e0)[:, None], c[:, None] * k * Ek, c[:, None] * dk * Ek]))
+        r, J = np.concatenate(rs), np.vstack(Js)
+        if robust:
+            r, dr = _cauchy(r, robust)
+            J = J * dr[:, None]
+        above, below = lt > lt_hi, lt < lt_lo
+        bound = pen * (np.where(above, lt - lt_hi, 0.0) + np.where(below, lt_lo - lt, 0.0))
+        Jb = np.hstack([np.zeros((n, n + 1)), np.diag(pen * (above.astype(float) - below.astype(float)))])
+        return np.concatenate([r, bound]), np.vstack([J, Jb]), None
+
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):    # a wild trial step: its
+        x, *_ = optim.levenberg_marquardt_host(resid_jac, x, max_iter=max_iter, ftol=1e-6)   # cost is inf, rejected
+    order = np.argsort(x[n + 1:])
+    return Series(float(math.exp(x[0]) * scale), np.exp(x[1:n + 1])[order] * scale, np.exp(x[n + 1:])[order])
+
+
+def choose(full: Series, window, errors_of=None, reference=None, target=None, max_terms: int = MAX_TERMS,
+           tolerance: float = TOLERANCE) -> Choice:
+    """The fewest terms that hold ``full``'s accuracy (module docstring).
+
+    ``errors_of(series) -> dict`` gives a series' errors on the DMA data (keys
+    ``storage_median``, ``loss_median`` or ``relaxation_median``); without it, ``reference``
+    (the full fit's recorded errors on the data, same keys) bounds the deviation from the
+    full fit over ``window`` (rad/s)."""
+    if errors_of is None and not reference:
+        raise ValueError("choose needs the DMA data (errors_of) or the full fit's recorded errors (reference)")
+    if errors_of is not None:
+        basis, ref = "data", errors_of(full)
+        keys = [k for k in ("storage_median", "loss_median", "relaxation_median") if k in ref]
+        limit = {k: tolerance * ref[k] for k in keys}
+        measure = errors_of
+    else:
+        basis, ref = "full fit", dict(reference)
+        keys = [k for k in ("storage_median", "loss_median") if k in ref] or ["storage_median"]
+        if "relaxation_median" in ref:       # relaxation data: E(t) bounds both moduli's deviation
+            ref.update(storage_median=ref["relaxation_median"], loss_median=ref["relaxation_median"])
+            keys = ["storage_median", "loss_median"]
+        limit = {k: (tolerance - 1.0) * ref[k] for k in keys}
+        measure = lambda s: deviation(s, full, window)  # noqa: E731
+    max_ext = max(MAX_EXTREMA, loss_extrema(full, *window))
+    fits = {}
+
+    def run(n):
+        if n not in fits:
+            s = fit_terms(full, n, window, target=target, **(DATA_FIT if target is not None else {}))
+            e = measure(s)
+            fits[n] = (s, e, loss_extrema(s, *window), max(e[k] / limit[k] for k in keys))
+        return fits[n]
+
+    def smallest(ok):
+        """Bisection for the smallest n with ok(n), given ok(max_terms) (accuracy grows with
+        n nearly monotonically; a count between two tried ones is not tried twice)."""
+        lo, hi = 0, int(max_terms)
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (lo, mid) if ok(mid) else (mid, hi)
+        return hi
+
+    accurate = lambda n: run(n)[3] <= 1.0  # noqa: E731
+    smooth = lambda n: accurate(n) and run(n)[2] <= max_ext  # noqa: E731
+    if smooth(max_terms):
+        n, met = smallest(smooth), True
+    elif accurate(max_terms):
+        n, met = smallest(accurate), False
+    else:
+        n, met = int(max_terms), False
+    s, e, ext, _ = run(n)
+    tried = tuple((k, {q: v[1][q] for q in keys}, v[2]) for k, v in sorted(fits.items()))
+    return Choice(s, met, accurate(n), e, ref, ext, basis, tried)
