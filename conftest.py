@@ -6,8 +6,13 @@ import os
 import shutil
 import tempfile
 
-import jax
-import pytest
+# One BLAS thread per process: the suite runs one pytest-xdist worker per core, and the
+# OpenBLAS bundled with scipy (jaxlib's dense LU calls it) then oversubscribes the cores,
+# making each dense solve 10-20x slower. Set before numpy loads it; the workers inherit it.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import jax  # noqa: E402
+import pytest  # noqa: E402
 
 jax.config.update("jax_enable_x64", True)
 
