@@ -37,18 +37,18 @@ SHIPPED = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_Eplexor_r
 
 # ---- independent readers: each returns (terms (G_inf, G_i, tau_i) in Pa and s, K [Pa],
 # ---- density [kg/m^3] or None, log10 a_T(T in C)) ------------------------------------------
-def _in_file_T(Tc, path):
-    """Temperatures of the test (C) in the file's unit (its header says which)."""
-    unit = re.search(r"temperature (K|C)\b", open(path).read()).group(1)
-    return np.asarray(Tc, float) + (273.15 if unit == "K" else 0.0)
+def _in_file_T(Tc, T_unit):
+    """Temperatures of the test (C) in the scale the test asked the exporter for (not the
+    one the file's header claims: a card in the wrong scale must fail)."""
+    return np.asarray(Tc, float) + (273.15 if T_unit == "K" else 0.0)
 
 
-def _wlf(Tc, Tr, C1, C2, path):
-    d = _in_file_T(Tc, path) - Tr
+def _wlf(Tc, Tr, C1, C2, T_unit):
+    d = _in_file_T(Tc, T_unit) - Tr
     return -C1 * d / (C2 + d)
 
 
-def read_abaqus(path, to_pa, to_rho):
+def read_abaqus(path, to_pa, to_rho, T_unit):
     blocks, key, consts = {}, None, {}
     for raw in open(path).read().splitlines():
         line = raw.strip()
@@ -70,13 +70,13 @@ def read_abaqus(path, to_pa, to_rho):
     terms = (G0 * (1 - g.sum()), G0 * g, tau)
     if "*TRS,DEFINITION=WLF" in blocks:
         (th0, C1, C2), = blocks["*TRS,DEFINITION=WLF"]
-        return terms, K0, rho, lambda Tc: _wlf(Tc, th0, C1, C2, path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, th0, C1, C2, T_unit)
     (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
     thZ, Rg = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
-    return terms, K0, rho, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, path) - thZ) - 1 / (th0 - thZ)) / math.log(10)
+    return terms, K0, rho, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, T_unit) - thZ) - 1 / (th0 - thZ)) / math.log(10)
 
 
-def read_ansys(path, to_pa, to_rho):
+def read_ansys(path, to_pa, to_rho, T_unit):
     mp, tables, cur, toff = {}, {}, None, 0.0
     for raw in open(path).read().splitlines():
         f = [s.strip() for s in raw.split("!")[0].split(",")]
@@ -102,13 +102,13 @@ def read_ansys(path, to_pa, to_rho):
     terms = (G0 * (1 - a.sum()), G0 * a, tau)
     if ("SHIFT", "WLF") in tables:
         s = tables[("SHIFT", "WLF")]
-        return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], T_unit)
     s = tables[("SHIFT", "TN")]
     assert s[3] == 0
-    return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, path) + toff) - 1 / (s[1] + toff)) / math.log(10)
+    return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, T_unit) + toff) - 1 / (s[1] + toff)) / math.log(10)
 
 
-def read_lsdyna(path, to_pa, to_rho):
+def read_lsdyna(path, to_pa, to_rho, T_unit):
     lines = open(path).read().splitlines()
     i = next(j for j, l in enumerate(lines) if l.startswith("*MAT_GENERAL_VISCOELASTIC"))
     assert lines[i].rstrip().endswith("+")            # long format: 20-character fields
@@ -126,7 +126,7 @@ def read_lsdyna(path, to_pa, to_rho):
     terms = (to_pa * t[long_term, 0].sum(), to_pa * t[~long_term, 0], 1.0 / t[~long_term, 1])
 
     def log10_aT(Tc):
-        T = _in_file_T(Tc, path)
+        T = _in_file_T(Tc, T_unit)
         ln_phi = -A * (T - TREF) / (B + T - TREF) if B != 0 else -A * (1 / T - 1 / TREF)
         return -ln_phi / math.log(10)            # a_T = 1/Phi
     return terms, K, rho, log10_aT
@@ -136,7 +136,8 @@ _COMSOL_UNITS = {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mo
                  "kg/m^3": 1.0, "t/mm^3": 1e12}
 
 
-def read_comsol(path_params, path_branches, to_pa, to_rho):
+def read_comsol(path_params, path_branches, to_pa, to_rho, T_unit=None):
+    """T_unit unused: every COMSOL temperature carries its unit in brackets."""
     p = {}
     text = open(path_params).read()
     assert "//" not in text and text.startswith("%")
@@ -169,7 +170,7 @@ def card_paths(fmt, out_dir, stem, temperature):
 
 def read_back(fmt, out_dir, stem, units, temperature):
     reader = {"abaqus": read_abaqus, "ansys": read_ansys, "lsdyna": read_lsdyna, "comsol": read_comsol}[fmt]
-    return reader(*card_paths(fmt, out_dir, stem, temperature), *UNIT_SCALE[units])
+    return reader(*card_paths(fmt, out_dir, stem, temperature), *UNIT_SCALE[units], temperature)
 
 
 def prony_G(terms):
