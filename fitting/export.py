@@ -48,8 +48,9 @@ written into the file. The temperature scale has no default (``temperature='K'``
 also in the file names); the density (``density``, kg/m^3) is written where each code wants
 it and LS-DYNA's RO is refused without it. Units: ``"SI"`` (Pa, s, kg/m^3, J/mol) or
 ``"mm-N-s-MPa"`` (MPa, s, t/mm^3, mJ/mol). Every header names the source DMA files, the fit's
-accuracy and the vjax version. Files are rendered before the first is written and each is
-written atomically: a refusal leaves nothing behind.
+accuracy and the vjax version. Files are rendered before the first is written, then written
+as a set (all to temporaries, renamed at the end: :func:`fitting.files.write_all_atomic`): a
+refusal or an I/O error leaves nothing behind.
 """
 from __future__ import annotations
 
@@ -63,7 +64,7 @@ import numpy as np
 
 from . import compact, evaluate
 from .evaluate import tensile_over_shear
-from .files import write_atomic
+from . import files
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
            "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name", "data_points"]
@@ -625,7 +626,7 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
                       density=density)
         parts = text if isinstance(text, tuple) else (text,)
         texts += [(os.path.join(out_dir, n), t) for n, t in zip(file_name(stem, fmt, temperature), parts)]
-    return [os.fspath(write_atomic(p, t)) for p, t in texts]
+    return [os.fspath(p) for p in files.write_all_atomic(texts)]
 
 
 # ---- reading a card back: each code's documented formula -----------------------------------

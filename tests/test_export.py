@@ -246,6 +246,24 @@ def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch):
         _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
 
 
+def test_file_set_is_atomic(tmp_path, monkeypatch):
+    """An I/O error on the second file of an export leaves no file at all (no first card, no
+    temporary)."""
+    from fitting import files
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    real, calls = files.write_temporary, []
+
+    def failing(p, data):
+        calls.append(p)
+        if len(calls) == 2:
+            raise OSError(28, "No space left on device")
+        return real(p, data)
+    monkeypatch.setattr(files, "write_temporary", failing)
+    with pytest.raises(OSError, match="No space left"):
+        export.export(export.load(path), "abaqus,ansys", str(tmp_path), "mat", temperature="K", terms="full")
+    assert len(calls) == 2 and os.listdir(tmp_path) == ["mat.json"]
+
+
 def test_bulk_modulus_and_shear_material(tmp_path):
     d = dict(WLF_MAT, modulus="G", nu=0.5)
     path = _write(tmp_path, d)
