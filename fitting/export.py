@@ -31,7 +31,7 @@ LS-DYNA      G(t) = sum_i GI exp(-BETAI t) (the long-term modulus    ``*MAT_GENE
              Phi = exp(-A (1/T - 1/TREF)) when B = 0 (Arrhenius)     GI, BETAI = 1/tau_i (G_inf: BETAI = 0)
 COMSOL       G(t) = G_inf + sum G_m exp(-t/tau_m); WLF               parameter file (T_ref, C1, C2 or Q, K, G_inf,
              log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref),           G_i, tau_i, rho with units) and branch file
-             Arrhenius a_T = exp((Q/R)(1/T - 1/T_ref))               (branch, G_i, tau_i)
+             Arrhenius a_T = exp((Q/R)(1/T - 1/T_ref))               (branch, G_i [Pa], tau_i [s], always SI)
 ============ ======================================================= ============================================
 
 LS-DYNA's Phi multiplies the time step (t' = int Phi dt) where Abaqus divides by A: Phi =
@@ -545,7 +545,7 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
 def _comsol(m: FEMMaterial, u: _Units):
     T = f"[{'K' if u.T_unit == 'K' else 'degC'}]"
     P = f"[{u.stress}]"
-    fields = "parameters with their units in brackets; branch file: branch, G_i, tau_i"
+    fields = "parameters with their units in brackets; branch file: branch, G_i [Pa], tau_i [s] (always SI)"
     head = u.header(m, "%", "COMSOL", fields)
     lines = [head, f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
     if m.law == "WLF":
@@ -560,9 +560,13 @@ def _comsol(m: FEMMaterial, u: _Units):
     for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1):
         lines += [f'G_{i} {_num(u.p(gi))}{P} "branch {i} shear modulus"', f'tau_{i} {_num(ti)}[s] "branch {i} relaxation time"']
     params = "\n".join(lines) + "\n"
-    branches = (head + f"\n% columns: branch number, shear modulus G_i [{u.stress}], relaxation time tau_i [s] "
-                "(at T_ref; shift law and bulk modulus in the parameter file)\n"
-                + "".join(f"{i} {_num(u.p(gi))} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
+    # the branch table's Load from File takes no units: COMSOL reads the numbers in the model's
+    # unit system (normally SI), so this file is in Pa and s whatever ``units`` says
+    si = _Units("SI", u.T_unit, u.density)
+    branches = (si.header(m, "%", "COMSOL", fields) + "\n% columns: branch number, shear modulus G_i [Pa], relaxation "
+                "time tau_i [s]: always Pa and s, whatever --units (COMSOL's Load from File reads no units, it takes "
+                "the numbers in the model's unit system); at T_ref, shift law and bulk modulus in the parameter file\n"
+                + "".join(f"{i} {_num(gi)} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
     return params, branches
 
 
@@ -731,12 +735,16 @@ def evaluate_card(path) -> Card:
             la = lambda T: A * (1 / Tfile(T) - 1 / TREF) / LN10  # noqa: E731
         return Card("lsdyna", int(np.count_nonzero(terms[:, 1])), K, G, la, T_unit)
     if name.endswith("_parameters.txt"):
-        p, units = {}, {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3}
+        p, units = {}, {"": 1.0, "Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3,
+                        "kg/m^3": 1.0, "t/mm^3": 1e12}
         for line in text.splitlines():
             q = re.match(r'^(\w+) ([-+0-9.eE]+)(?:\[([^\]]*)\])? "', line)
             if q:
                 v, un = float(q.group(2)), q.group(3) or ""
-                p[q.group(1)] = v + KELVIN if un == "degC" else v * units.get(un, 1.0)
+                if un != "degC" and un not in units:
+                    raise ValueError(f"{path}: unit {un!r} of {q.group(1)} is not one vjax-export writes "
+                                     f"({', '.join(u for u in units if u)} or degC): cannot evaluate the card")
+                p[q.group(1)] = v + KELVIN if un == "degC" else v * units[un]
         n = sum(1 for k in p if re.fullmatch(r"G_\d+", k))
         g = np.array([p[f"G_{i}"] for i in range(1, n + 1)])
         tau = np.array([p[f"tau_{i}"] for i in range(1, n + 1)])

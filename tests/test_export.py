@@ -137,7 +137,8 @@ _COMSOL_UNITS = {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mo
 
 
 def read_comsol(path_params, path_branches, to_pa, to_rho, T_unit=None):
-    """T_unit unused: every COMSOL temperature carries its unit in brackets."""
+    """T_unit unused: every COMSOL temperature carries its unit in brackets. The branch file
+    is in Pa and s whatever the units (COMSOL reads it in the model's units, normally SI)."""
     p = {}
     text = open(path_params).read()
     assert "//" not in text and text.startswith("%")
@@ -152,7 +153,7 @@ def read_comsol(path_params, path_branches, to_pa, to_rho, T_unit=None):
     br = np.loadtxt(path_branches, ndmin=2, comments="%")
     assert open(path_branches).read().startswith("%")
     np.testing.assert_array_equal(br[:, 0], np.arange(1, n + 1))
-    np.testing.assert_allclose(br[:, 1] * to_pa, Gi, rtol=1e-14)
+    np.testing.assert_allclose(br[:, 1], Gi, rtol=1e-14)
     np.testing.assert_allclose(br[:, 2], tau, rtol=1e-14)
     Tk = lambda Tc: np.asarray(Tc) + 273.15
     if "C1" in p:
@@ -244,6 +245,35 @@ def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch):
     assert export_cli.main(args) == 0
     with pytest.raises(AssertionError, match="log10 a_T"):
         _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
+
+
+def test_comsol_branch_file_is_in_pa_whatever_the_units(tmp_path):
+    """COMSOL's Load from File reads the branch table without units, in the model's unit
+    system (normally SI): with --units mm-N-s-MPa the branch moduli are still the fitted G_i
+    in Pa (the parameter file, with bracketed units, is in MPa), and its header says so."""
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "comsol", "--units", "mm-N-s-MPa", "--temperature", "K",
+                            "--full-spectrum"]) == 0
+    params, branches = card_paths("comsol", str(tmp_path), "mat", "K")
+    G = np.array(WLF_MAT["moduli"]) / (2 * 1.4)
+    br = np.loadtxt(branches, ndmin=2, comments="%")
+    np.testing.assert_allclose(br[:, 1], G, rtol=1e-14)
+    np.testing.assert_allclose(br[:, 2], WLF_MAT["times"], rtol=1e-14)
+    head = open(branches).read()
+    assert "shear modulus G_i [Pa]" in head and "always Pa and s" in head and "[MPa]" not in head
+    G1 = float(re.search(r'^G_1 ([-+0-9.eE]+)\[MPa\] ', open(params).read(), re.M).group(1))
+    assert abs(G1 / (G[0] * 1e-6) - 1) < 1e-14
+
+
+def test_evaluate_card_refuses_unknown_comsol_units(tmp_path):
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "comsol", "--temperature", "C", "--full-spectrum"]) == 0
+    params = card_paths("comsol", str(tmp_path), "mat", "C")[0]
+    text = open(params).read()
+    assert export.evaluate_card(params).terms == 5
+    open(params, "w").write(text.replace('[Pa] "long-term', '[kPa] "long-term'))     # an edit COMSOL would take
+    with pytest.raises(ValueError, match=re.escape(os.path.basename(params)) + r": unit 'kPa' of G_inf"):
+        export.evaluate_card(params)
 
 
 def test_file_set_is_atomic(tmp_path, monkeypatch):
