@@ -21,6 +21,7 @@ Abaqus       g_R(t) = 1 - sum g_i (1 - exp(-t/tau_i)), G = G_0 g_R;  ``*ELASTIC,
              reduced time d xi = dt / A, WLF                         ``*VISCOELASTIC, TIME=PRONY`` g_i = G_i/G_g,
              log10 A = -C1 (th - th0)/(C2 + th - th0); Arrhenius     k_i = 0, tau_i; ``*TRS`` th0, C1, C2 (A = a_T)
              ln A = (E0/R)(1/(th - thZ) - 1/(th0 - thZ))             or th0, Ea with *PHYSICAL CONSTANTS R, thZ
+                                                                     (the model's R: the header states the one assumed)
 ANSYS        G(t) = G_0 (a_inf + sum a_i exp(-t/tau_i)),             ``MP,EX/NUXY`` instantaneous; ``TB,PRONY,,,n,
              a_inf = 1 - sum a_i; WLF log10 A as Abaqus; TN          SHEAR`` a_i = G_i/G_g, tau_i; ``TB,SHIFT`` WLF
              (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R, 0;
@@ -67,7 +68,7 @@ from .evaluate import tensile_over_shear
 from . import files
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
-           "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name", "data_points"]
+           "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points"]
 
 FORMATS = ("abaqus", "ansys", "lsdyna", "comsol")
 # output unit system -> (Pa -> stress unit, stress name, energy name, kg/m^3 -> density unit, density name)
@@ -449,11 +450,24 @@ class _Units:
         return "\n".join(comment + " " + s for s in lines)
 
 
+def abaqus_name(name: str) -> str:
+    """``name`` as an Abaqus label: letters, digits and underscores only, starting with a
+    letter (``M_`` prefixed otherwise), at most 80 characters: '2024_EPDM' -> 'M_2024_EPDM'."""
+    name = re.sub(r"[^A-Za-z0-9_]", "_", str(name)) or "VJAX"
+    return (name if name[0].isalpha() else "M_" + name)[:80]
+
+
 def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
     g = m.G / m.G_g
     fields = ("*VISCOELASTIC g_i = G_i/G_g, k_i = 0, tau_i; *TRS " + ("th0, C1, C2 (log10 A = a_T)" if m.law == "WLF"
                                                                        else "th0, Ea (ln A = ln a_T)"))
-    lines = [u.header(m, "**", "Abaqus", fields), f"*MATERIAL, NAME={name}"]
+    lines = [u.header(m, "**", "Abaqus", fields)]
+    if m.law == "Arrhenius":
+        lines += ["** Arrhenius: Abaqus takes R and absolute zero from *PHYSICAL CONSTANTS (model data, one per model).",
+                  f"** This card assumes the universal gas constant R = {_num(GAS_CONSTANT * u.energy_scale)} "
+                  f"{u.energy.replace('/mol', '/(mol K)')} (units {u.name}) and ABSOLUTE ZERO = "
+                  f"{_num(0.0 if u.T_unit == 'K' else -KELVIN)}; a model with another R shifts by the wrong factor."]
+    lines.append(f"*MATERIAL, NAME={abaqus_name(name)}")
     if u.density is not None:
         lines += ["*DENSITY", _num(u.rho())]
     lines += ["*ELASTIC, MODULI=INSTANTANEOUS", f"{_num(u.p(m.E_g))}, {_num(m.nu_g)}",
@@ -671,8 +685,9 @@ def evaluate_card(path) -> Card:
     if name.endswith(".inp"):
         blocks, key, consts = {}, None, {}
         for line in (l.strip() for l in text.splitlines()):
-            if line.upper().startswith("** *PHYSICAL CONSTANTS"):
-                consts = {k.strip().upper(): float(v) for k, v in re.findall(r"([A-Z ]+)=([-+0-9.eE]+)", line[3:])}
+            if re.match(r"(\*\*\s*)?\*PHYSICAL\s*CONSTANTS", line, re.I):     # as written, or un-commented
+                consts = {re.sub(r"\s+", " ", k.strip().upper()): float(v)
+                          for k, v in re.findall(r"([A-Za-z ]+)=\s*([-+0-9.eE]+)", line.split(",", 1)[-1])}
             elif line.startswith("*") and not line.startswith("**"):
                 key = line.upper().replace(" ", "")
                 blocks[key] = []
@@ -687,6 +702,9 @@ def evaluate_card(path) -> Card:
             la = lambda T: -C1 * (Tfile(T) - th0) / (C2 + Tfile(T) - th0)  # noqa: E731
         else:
             (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
+            if not {"ABSOLUTE ZERO", "UNIVERSAL GAS CONSTANT"} <= set(consts):
+                raise ValueError(f"{path}: Arrhenius *TRS needs *PHYSICAL CONSTANTS, ABSOLUTE ZERO=..., "
+                                 "UNIVERSAL GAS CONSTANT=...")
             z, R = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
             la = lambda T: E0 / R * (1 / (Tfile(T) - z) - 1 / (th0 - z)) / LN10  # noqa: E731
         return Card("abaqus", len(tau), K, G, la, T_unit)

@@ -276,6 +276,34 @@ def test_evaluate_card_refuses_unknown_comsol_units(tmp_path):
         export.evaluate_card(params)
 
 
+@pytest.mark.parametrize("units, R_text", [("SI", r"8\.31446\d* J/\(mol K\)"), ("mm-N-s-MPa", r"8314\.46\d* mJ/\(mol K\)")])
+def test_abaqus_arrhenius_states_R_and_reads_physical_constants(tmp_path, units, R_text):
+    """Abaqus' Arrhenius shift uses the model's R (*PHYSICAL CONSTANTS): the header says which
+    R the card assumes, and evaluate_card reads the keyword also once the user un-comments it."""
+    path = _write(tmp_path, dict(ARR_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "abaqus", "--units", units, "--temperature", "C",
+                            "--full-spectrum"]) == 0
+    inp = card_paths("abaqus", str(tmp_path), "mat", "C")[0]
+    text = open(inp).read()
+    assert re.search(r"^\*\* This card assumes the universal gas constant R = " + R_text + r" \(units " + units
+                     + r"\) and ABSOLUTE ZERO = -273\.15;", text, re.M)
+    T = np.array([-40.0, -10.0, 30.0])
+    before = export.evaluate_card(inp).log10_aT(T)
+    open(inp, "w").write(text.replace("** *PHYSICAL CONSTANTS", "*PHYSICAL CONSTANTS"))
+    np.testing.assert_allclose(export.evaluate_card(inp).log10_aT(T), before, rtol=1e-14)
+    np.testing.assert_allclose(before, Arrhenius(ARR_MAT["shift"]["Ea"], -10.0).log10_aT(T), rtol=1e-10, atol=1e-12)
+
+
+def test_abaqus_material_name_starts_with_a_letter(tmp_path):
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4), "2024_EPDM")
+    assert export_cli.main([path, "--format", "abaqus", "--temperature", "K", "--full-spectrum"]) == 0
+    text = open(card_paths("abaqus", str(tmp_path), "2024_EPDM", "K")[0]).read()
+    assert "*MATERIAL, NAME=M_2024_EPDM\n" in text
+    assert export_cli.main([path, "--format", "abaqus", "--temperature", "K", "--full-spectrum",
+                            "--stem", "epdm v2.1"]) == 0
+    assert "*MATERIAL, NAME=EPDM_V2_1\n" in open(card_paths("abaqus", str(tmp_path), "epdm v2.1", "K")[0]).read()
+
+
 def test_file_set_is_atomic(tmp_path, monkeypatch):
     """An I/O error on the second file of an export leaves no file at all (no first card, no
     temporary)."""
