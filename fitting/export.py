@@ -24,7 +24,7 @@ Abaqus       g_R(t) = 1 - sum g_i (1 - exp(-t/tau_i)), G = G_0 g_R;  ``*ELASTIC,
                                                                      (the model's R: the header states the one assumed)
 ANSYS        G(t) = G_0 (a_inf + sum a_i exp(-t/tau_i)),             ``MP,EX/NUXY`` instantaneous; ``TB,PRONY,,,n,
              a_inf = 1 - sum a_i; WLF log10 A as Abaqus; TN          SHEAR`` a_i = G_i/G_g, tau_i; ``TB,SHIFT`` WLF
-             (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R, 0;
+             (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R;
              ln A = H/R (1/T - 1/Tr), T absolute via TOFFST          ``TOFFST,273.15`` with temperatures in C
 LS-DYNA      G(t) = sum_i GI exp(-BETAI t) (the long-term modulus    ``*MAT_GENERAL_VISCOELASTIC``: RO, BULK = K,
              is a term with BETAI = 0); reduced time t' = int Phi dt TREF = T_ref, A = -C1 ln 10, B = C2 (WLF) or
@@ -490,7 +490,7 @@ def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
 def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     a = m.G / m.G_g
     fields = "TB,PRONY SHEAR a_i = G_i/G_g, tau_i; TB,SHIFT " + ("WLF Tr, C1, C2" if m.law == "WLF"
-                                                                 else "TN Tr, H/R = Ea/R, 0")
+                                                                 else "TN Tr, H/R = Ea/R")
     lines = [u.header(m, "!", "ANSYS", fields), f"MP,EX,{mat_id},{_num(u.p(m.E_g))}", f"MP,NUXY,{mat_id},{_num(m.nu_g)}"]
     if u.density is not None:
         lines.append(f"MP,DENS,{mat_id},{_num(u.rho())}")
@@ -503,8 +503,8 @@ def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     if m.law == "WLF":
         lines += [f"TB,SHIFT,{mat_id},1,3,WLF", f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['C1'])},{_num(m.shift['C2'])}"]
     else:
-        lines += [f"TB,SHIFT,{mat_id},1,3,TN",
-                  f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['Ea'] / GAS_CONSTANT)},0"]
+        lines += [f"TB,SHIFT,{mat_id},1,2,TN",
+                  f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['Ea'] / GAS_CONSTANT)}"]
     return "\n".join(lines) + "\n"
 
 
@@ -541,7 +541,8 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
         raise ValueError(f"LS-DYNA reads at most {CARD_LIMIT['lsdyna']} GI/BETAI cards, G_inf included; the series "
                          f"has {len(m.G)} terms + G_inf (export prepares a refit of {CARD_LIMIT['lsdyna'] - 1})")
     TREF, A, B = lsdyna_shift(m, u.T_unit)
-    shift = ("Phi = exp(-A (T - TREF)/(B + T - TREF)) = 1/a_T: A = -C1 ln 10, B = C2" if m.law == "WLF"
+    shift = ("A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T), B = C2"
+             if m.law == "WLF"
              else "B = 0: Phi = exp(-A (1/T - 1/TREF)) = 1/a_T, T in K: A = Ea/R, TREF in K")
     lines = ["*KEYWORD", u.header(m, "$", "LS-DYNA", "reduced time t' = int Phi dt, " + shift),
              "*MAT_GENERAL_VISCOELASTIC +",

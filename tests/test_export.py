@@ -104,7 +104,7 @@ def read_ansys(path, to_pa, to_rho, T_unit):
         s = tables[("SHIFT", "WLF")]
         return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], T_unit)
     s = tables[("SHIFT", "TN")]
-    assert s[3] == 0
+    assert sorted(s) == [1, 2]            # TN takes Tr and H/R only (no fictive-temperature weight)
     return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, T_unit) + toff) - 1 / (s[1] + toff)) / math.log(10)
 
 
@@ -233,15 +233,21 @@ def test_every_format_reads_back(tmp_path, d, units, temperature):
         _check(d, fmt, str(tmp_path), "mat", units, 0.42, temperature, rho=1150.0)
 
 
-def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch):
+@pytest.mark.parametrize("wrong_A", [lambda C1: C1, lambda C1: C1 * math.log(10)], ids=["A=C1", "A=+C1ln10"])
+def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch, wrong_A):
     """The LS-DYNA check can fail: with the base-10 constant A = C1 written (the old card),
-    the documented Phi puts log10 a_T 10 decades off at -20 C; the reader sees it."""
+    the documented Phi puts log10 a_T 10 decades off at -20 C; a sign error alone (A = +C1 ln
+    10) is caught too. The header says why A is negative."""
     path = _write(tmp_path, dict(WLF_MAT, shift=dict(WLF_MAT["shift"], C1=17.4, C2=51.6)))
     args = [path, "--format", "lsdyna", "--nu", "0.42", "--temperature", "K", "--density", "1150", "--full-spectrum"]
     d = json.loads(open(path).read())
     assert export_cli.main(args) == 0
     _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
-    monkeypatch.setattr(export, "lsdyna_shift", lambda m, T_unit: (m.T_ref + 273.15, m.shift["C1"], m.shift["C2"]))
+    text = open(card_paths("lsdyna", str(tmp_path), "mat", "K")[0]).read()
+    assert "A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T)" in text
+    assert re.search(r"check .*log10 a_T at 278.15 K = ", text)
+    monkeypatch.setattr(export, "lsdyna_shift",
+                        lambda m, T_unit: (m.T_ref + 273.15, wrong_A(m.shift["C1"]), m.shift["C2"]))
     assert export_cli.main(args) == 0
     with pytest.raises(AssertionError, match="log10 a_T"):
         _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
