@@ -21,9 +21,10 @@ Abaqus       g_R(t) = 1 - sum g_i (1 - exp(-t/tau_i)), G = G_0 g_R;  ``*ELASTIC,
              reduced time d xi = dt / A, WLF                         ``*VISCOELASTIC, TIME=PRONY`` g_i = G_i/G_g,
              log10 A = -C1 (th - th0)/(C2 + th - th0); Arrhenius     k_i = 0, tau_i; ``*TRS`` th0, C1, C2 (A = a_T)
              ln A = (E0/R)(1/(th - thZ) - 1/(th0 - thZ))             or th0, Ea with *PHYSICAL CONSTANTS R, thZ
+                                                                     (the model's R: the header states the one assumed)
 ANSYS        G(t) = G_0 (a_inf + sum a_i exp(-t/tau_i)),             ``MP,EX/NUXY`` instantaneous; ``TB,PRONY,,,n,
              a_inf = 1 - sum a_i; WLF log10 A as Abaqus; TN          SHEAR`` a_i = G_i/G_g, tau_i; ``TB,SHIFT`` WLF
-             (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R, 0;
+             (Tool-Narayanaswamy, no fictive temperature)            Tr, C1, C2 or TN Tr, H/R = Ea/R;
              ln A = H/R (1/T - 1/Tr), T absolute via TOFFST          ``TOFFST,273.15`` with temperatures in C
 LS-DYNA      G(t) = sum_i GI exp(-BETAI t) (the long-term modulus    ``*MAT_GENERAL_VISCOELASTIC``: RO, BULK = K,
              is a term with BETAI = 0); reduced time t' = int Phi dt TREF = T_ref, A = -C1 ln 10, B = C2 (WLF) or
@@ -31,7 +32,7 @@ LS-DYNA      G(t) = sum_i GI exp(-BETAI t) (the long-term modulus    ``*MAT_GENE
              Phi = exp(-A (1/T - 1/TREF)) when B = 0 (Arrhenius)     GI, BETAI = 1/tau_i (G_inf: BETAI = 0)
 COMSOL       G(t) = G_inf + sum G_m exp(-t/tau_m); WLF               parameter file (T_ref, C1, C2 or Q, K, G_inf,
              log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref),           G_i, tau_i, rho with units) and branch file
-             Arrhenius a_T = exp((Q/R)(1/T - 1/T_ref))               (branch, G_i, tau_i)
+             Arrhenius a_T = exp((Q/R)(1/T - 1/T_ref))               (branch, G_i [Pa], tau_i [s], always SI)
 ============ ======================================================= ============================================
 
 LS-DYNA's Phi multiplies the time step (t' = int Phi dt) where Abaqus divides by A: Phi =
@@ -48,8 +49,9 @@ written into the file. The temperature scale has no default (``temperature='K'``
 also in the file names); the density (``density``, kg/m^3) is written where each code wants
 it and LS-DYNA's RO is refused without it. Units: ``"SI"`` (Pa, s, kg/m^3, J/mol) or
 ``"mm-N-s-MPa"`` (MPa, s, t/mm^3, mJ/mol). Every header names the source DMA files, the fit's
-accuracy and the vjax version. Files are rendered before the first is written and each is
-written atomically: a refusal leaves nothing behind.
+accuracy and the vjax version. Files are rendered before the first is written, then written
+as a set (all to temporaries, renamed at the end: :func:`fitting.files.write_all_atomic`): a
+refusal or an I/O error leaves nothing behind.
 """
 from __future__ import annotations
 
@@ -63,10 +65,10 @@ import numpy as np
 
 from . import compact, evaluate
 from .evaluate import tensile_over_shear
-from .files import write_atomic
+from . import files
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
-           "render", "parse_formats", "lsdyna_shift", "evaluate_card", "file_name", "data_points"]
+           "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points"]
 
 FORMATS = ("abaqus", "ansys", "lsdyna", "comsol")
 # output unit system -> (Pa -> stress unit, stress name, energy name, kg/m^3 -> density unit, density name)
@@ -448,11 +450,24 @@ class _Units:
         return "\n".join(comment + " " + s for s in lines)
 
 
+def abaqus_name(name: str) -> str:
+    """``name`` as an Abaqus label: letters, digits and underscores only, starting with a
+    letter (``M_`` prefixed otherwise), at most 80 characters: '2024_EPDM' -> 'M_2024_EPDM'."""
+    name = re.sub(r"[^A-Za-z0-9_]", "_", str(name)) or "VJAX"
+    return (name if name[0].isalpha() else "M_" + name)[:80]
+
+
 def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
     g = m.G / m.G_g
     fields = ("*VISCOELASTIC g_i = G_i/G_g, k_i = 0, tau_i; *TRS " + ("th0, C1, C2 (log10 A = a_T)" if m.law == "WLF"
                                                                        else "th0, Ea (ln A = ln a_T)"))
-    lines = [u.header(m, "**", "Abaqus", fields), f"*MATERIAL, NAME={name}"]
+    lines = [u.header(m, "**", "Abaqus", fields)]
+    if m.law == "Arrhenius":
+        lines += ["** Arrhenius: Abaqus takes R and absolute zero from *PHYSICAL CONSTANTS (model data, one per model).",
+                  f"** This card assumes the universal gas constant R = {_num(GAS_CONSTANT * u.energy_scale)} "
+                  f"{u.energy.replace('/mol', '/(mol K)')} (units {u.name}) and ABSOLUTE ZERO = "
+                  f"{_num(0.0 if u.T_unit == 'K' else -KELVIN)}; a model with another R shifts by the wrong factor."]
+    lines.append(f"*MATERIAL, NAME={abaqus_name(name)}")
     if u.density is not None:
         lines += ["*DENSITY", _num(u.rho())]
     lines += ["*ELASTIC, MODULI=INSTANTANEOUS", f"{_num(u.p(m.E_g))}, {_num(m.nu_g)}",
@@ -475,7 +490,7 @@ def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
 def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     a = m.G / m.G_g
     fields = "TB,PRONY SHEAR a_i = G_i/G_g, tau_i; TB,SHIFT " + ("WLF Tr, C1, C2" if m.law == "WLF"
-                                                                 else "TN Tr, H/R = Ea/R, 0")
+                                                                 else "TN Tr, H/R = Ea/R")
     lines = [u.header(m, "!", "ANSYS", fields), f"MP,EX,{mat_id},{_num(u.p(m.E_g))}", f"MP,NUXY,{mat_id},{_num(m.nu_g)}"]
     if u.density is not None:
         lines.append(f"MP,DENS,{mat_id},{_num(u.rho())}")
@@ -488,8 +503,8 @@ def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     if m.law == "WLF":
         lines += [f"TB,SHIFT,{mat_id},1,3,WLF", f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['C1'])},{_num(m.shift['C2'])}"]
     else:
-        lines += [f"TB,SHIFT,{mat_id},1,3,TN",
-                  f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['Ea'] / GAS_CONSTANT)},0"]
+        lines += [f"TB,SHIFT,{mat_id},1,2,TN",
+                  f"TBDATA,1,{_num(u.T(m.T_ref))},{_num(m.shift['Ea'] / GAS_CONSTANT)}"]
     return "\n".join(lines) + "\n"
 
 
@@ -526,7 +541,8 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
         raise ValueError(f"LS-DYNA reads at most {CARD_LIMIT['lsdyna']} GI/BETAI cards, G_inf included; the series "
                          f"has {len(m.G)} terms + G_inf (export prepares a refit of {CARD_LIMIT['lsdyna'] - 1})")
     TREF, A, B = lsdyna_shift(m, u.T_unit)
-    shift = ("Phi = exp(-A (T - TREF)/(B + T - TREF)) = 1/a_T: A = -C1 ln 10, B = C2" if m.law == "WLF"
+    shift = ("A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T), B = C2"
+             if m.law == "WLF"
              else "B = 0: Phi = exp(-A (1/T - 1/TREF)) = 1/a_T, T in K: A = Ea/R, TREF in K")
     lines = ["*KEYWORD", u.header(m, "$", "LS-DYNA", "reduced time t' = int Phi dt, " + shift),
              "*MAT_GENERAL_VISCOELASTIC +",
@@ -544,7 +560,7 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
 def _comsol(m: FEMMaterial, u: _Units):
     T = f"[{'K' if u.T_unit == 'K' else 'degC'}]"
     P = f"[{u.stress}]"
-    fields = "parameters with their units in brackets; branch file: branch, G_i, tau_i"
+    fields = "parameters with their units in brackets; branch file: branch, G_i [Pa], tau_i [s] (always SI)"
     head = u.header(m, "%", "COMSOL", fields)
     lines = [head, f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
     if m.law == "WLF":
@@ -559,9 +575,13 @@ def _comsol(m: FEMMaterial, u: _Units):
     for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1):
         lines += [f'G_{i} {_num(u.p(gi))}{P} "branch {i} shear modulus"', f'tau_{i} {_num(ti)}[s] "branch {i} relaxation time"']
     params = "\n".join(lines) + "\n"
-    branches = (head + f"\n% columns: branch number, shear modulus G_i [{u.stress}], relaxation time tau_i [s] "
-                "(at T_ref; shift law and bulk modulus in the parameter file)\n"
-                + "".join(f"{i} {_num(u.p(gi))} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
+    # the branch table's Load from File takes no units: COMSOL reads the numbers in the model's
+    # unit system (normally SI), so this file is in Pa and s whatever ``units`` says
+    si = _Units("SI", u.T_unit, u.density)
+    branches = (si.header(m, "%", "COMSOL", fields) + "\n% columns: branch number, shear modulus G_i [Pa], relaxation "
+                "time tau_i [s]: always Pa and s, whatever --units (COMSOL's Load from File reads no units, it takes "
+                "the numbers in the model's unit system); at T_ref, shift law and bulk modulus in the parameter file\n"
+                + "".join(f"{i} {_num(gi)} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
     return params, branches
 
 
@@ -625,7 +645,7 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
                       density=density)
         parts = text if isinstance(text, tuple) else (text,)
         texts += [(os.path.join(out_dir, n), t) for n, t in zip(file_name(stem, fmt, temperature), parts)]
-    return [os.fspath(write_atomic(p, t)) for p, t in texts]
+    return [os.fspath(p) for p in files.write_all_atomic(texts)]
 
 
 # ---- reading a card back: each code's documented formula -----------------------------------
@@ -666,8 +686,9 @@ def evaluate_card(path) -> Card:
     if name.endswith(".inp"):
         blocks, key, consts = {}, None, {}
         for line in (l.strip() for l in text.splitlines()):
-            if line.upper().startswith("** *PHYSICAL CONSTANTS"):
-                consts = {k.strip().upper(): float(v) for k, v in re.findall(r"([A-Z ]+)=([-+0-9.eE]+)", line[3:])}
+            if re.match(r"(\*\*\s*)?\*PHYSICAL\s*CONSTANTS", line, re.I):     # as written, or un-commented
+                consts = {re.sub(r"\s+", " ", k.strip().upper()): float(v)
+                          for k, v in re.findall(r"([A-Za-z ]+)=\s*([-+0-9.eE]+)", line.split(",", 1)[-1])}
             elif line.startswith("*") and not line.startswith("**"):
                 key = line.upper().replace(" ", "")
                 blocks[key] = []
@@ -682,6 +703,9 @@ def evaluate_card(path) -> Card:
             la = lambda T: -C1 * (Tfile(T) - th0) / (C2 + Tfile(T) - th0)  # noqa: E731
         else:
             (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
+            if not {"ABSOLUTE ZERO", "UNIVERSAL GAS CONSTANT"} <= set(consts):
+                raise ValueError(f"{path}: Arrhenius *TRS needs *PHYSICAL CONSTANTS, ABSOLUTE ZERO=..., "
+                                 "UNIVERSAL GAS CONSTANT=...")
             z, R = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
             la = lambda T: E0 / R * (1 / (Tfile(T) - z) - 1 / (th0 - z)) / LN10  # noqa: E731
         return Card("abaqus", len(tau), K, G, la, T_unit)
@@ -730,12 +754,16 @@ def evaluate_card(path) -> Card:
             la = lambda T: A * (1 / Tfile(T) - 1 / TREF) / LN10  # noqa: E731
         return Card("lsdyna", int(np.count_nonzero(terms[:, 1])), K, G, la, T_unit)
     if name.endswith("_parameters.txt"):
-        p, units = {}, {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3}
+        p, units = {}, {"": 1.0, "Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mol": 1e-3,
+                        "kg/m^3": 1.0, "t/mm^3": 1e12}
         for line in text.splitlines():
             q = re.match(r'^(\w+) ([-+0-9.eE]+)(?:\[([^\]]*)\])? "', line)
             if q:
                 v, un = float(q.group(2)), q.group(3) or ""
-                p[q.group(1)] = v + KELVIN if un == "degC" else v * units.get(un, 1.0)
+                if un != "degC" and un not in units:
+                    raise ValueError(f"{path}: unit {un!r} of {q.group(1)} is not one vjax-export writes "
+                                     f"({', '.join(u for u in units if u)} or degC): cannot evaluate the card")
+                p[q.group(1)] = v + KELVIN if un == "degC" else v * units[un]
         n = sum(1 for k in p if re.fullmatch(r"G_\d+", k))
         g = np.array([p[f"G_{i}"] for i in range(1, n + 1)])
         tau = np.array([p[f"tau_{i}"] for i in range(1, n + 1)])

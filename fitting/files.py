@@ -3,7 +3,8 @@
 A file is written to a temporary file in the target's directory, flushed and fsync'ed,
 given the mode a newly created file gets (0666 less the umask: 0644 under the usual 022),
 then ``os.replace``'d over the target. A reader never sees half a file, and a failed write
-leaves no partial file and an existing target unchanged.
+leaves no partial file and an existing target unchanged. A set of files (an FEM export)
+is written all to temporaries first and renamed at the end (:func:`write_all_atomic`).
 """
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["write_atomic", "save_figure"]
+__all__ = ["write_atomic", "write_all_atomic", "write_temporary", "save_figure"]
 
 
 def _umask() -> int:
@@ -21,8 +22,10 @@ def _umask() -> int:
     return mask
 
 
-def write_atomic(path, data: bytes | str) -> Path:
-    """Write ``data`` (bytes, or str as UTF-8) to ``path`` atomically; returns the path."""
+def write_temporary(path, data: bytes | str) -> Path:
+    """Write ``data`` (bytes, or str as UTF-8) to a new temporary file next to ``path``,
+    flushed, fsync'ed and given a new file's mode; returns the temporary's path (the caller
+    renames or removes it). A failed write leaves nothing."""
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
@@ -31,12 +34,38 @@ def write_atomic(path, data: bytes | str) -> Path:
             fh.flush()
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes it 0600
-        os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
-    return path
+    return Path(tmp)
+
+
+def write_atomic(path, data: bytes | str) -> Path:
+    """Write ``data`` (bytes, or str as UTF-8) to ``path`` atomically; returns the path."""
+    return write_all_atomic([(path, data)])[0]
+
+
+def write_all_atomic(items) -> list:
+    """Write every ``(path, data)`` of ``items`` as a set: all to temporaries first
+    (:func:`write_temporary`), then all renamed over their targets. An error while writing
+    leaves no temporary and no target touched; an error while renaming also removes the
+    targets already renamed (a set is never left half-written). Returns the paths."""
+    temps, done = [], []
+    try:
+        for path, data in items:
+            temps.append((write_temporary(path, data), Path(path)))
+        for tmp, path in temps:
+            os.replace(tmp, path)
+            done.append(path)
+    except BaseException:
+        for tmp, _ in temps:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+        for path in done:
+            os.unlink(path)
+        raise
+    return done
 
 
 def save_figure(fig, path, dpi: int = 150, **savefig_kw) -> Path:

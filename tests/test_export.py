@@ -37,18 +37,18 @@ SHIPPED = os.path.join(os.path.dirname(default_data("pyvisco")), "freq_Eplexor_r
 
 # ---- independent readers: each returns (terms (G_inf, G_i, tau_i) in Pa and s, K [Pa],
 # ---- density [kg/m^3] or None, log10 a_T(T in C)) ------------------------------------------
-def _in_file_T(Tc, path):
-    """Temperatures of the test (C) in the file's unit (its header says which)."""
-    unit = re.search(r"temperature (K|C)\b", open(path).read()).group(1)
-    return np.asarray(Tc, float) + (273.15 if unit == "K" else 0.0)
+def _in_file_T(Tc, T_unit):
+    """Temperatures of the test (C) in the scale the test asked the exporter for (not the
+    one the file's header claims: a card in the wrong scale must fail)."""
+    return np.asarray(Tc, float) + (273.15 if T_unit == "K" else 0.0)
 
 
-def _wlf(Tc, Tr, C1, C2, path):
-    d = _in_file_T(Tc, path) - Tr
+def _wlf(Tc, Tr, C1, C2, T_unit):
+    d = _in_file_T(Tc, T_unit) - Tr
     return -C1 * d / (C2 + d)
 
 
-def read_abaqus(path, to_pa, to_rho):
+def read_abaqus(path, to_pa, to_rho, T_unit):
     blocks, key, consts = {}, None, {}
     for raw in open(path).read().splitlines():
         line = raw.strip()
@@ -70,13 +70,13 @@ def read_abaqus(path, to_pa, to_rho):
     terms = (G0 * (1 - g.sum()), G0 * g, tau)
     if "*TRS,DEFINITION=WLF" in blocks:
         (th0, C1, C2), = blocks["*TRS,DEFINITION=WLF"]
-        return terms, K0, rho, lambda Tc: _wlf(Tc, th0, C1, C2, path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, th0, C1, C2, T_unit)
     (th0, E0), = blocks["*TRS,DEFINITION=ARRHENIUS"]
     thZ, Rg = consts["ABSOLUTE ZERO"], consts["UNIVERSAL GAS CONSTANT"]
-    return terms, K0, rho, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, path) - thZ) - 1 / (th0 - thZ)) / math.log(10)
+    return terms, K0, rho, lambda Tc: (E0 / Rg) * (1 / (_in_file_T(Tc, T_unit) - thZ) - 1 / (th0 - thZ)) / math.log(10)
 
 
-def read_ansys(path, to_pa, to_rho):
+def read_ansys(path, to_pa, to_rho, T_unit):
     mp, tables, cur, toff = {}, {}, None, 0.0
     for raw in open(path).read().splitlines():
         f = [s.strip() for s in raw.split("!")[0].split(",")]
@@ -102,13 +102,13 @@ def read_ansys(path, to_pa, to_rho):
     terms = (G0 * (1 - a.sum()), G0 * a, tau)
     if ("SHIFT", "WLF") in tables:
         s = tables[("SHIFT", "WLF")]
-        return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], path)
+        return terms, K0, rho, lambda Tc: _wlf(Tc, s[1], s[2], s[3], T_unit)
     s = tables[("SHIFT", "TN")]
-    assert s[3] == 0
-    return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, path) + toff) - 1 / (s[1] + toff)) / math.log(10)
+    assert sorted(s) == [1, 2]            # TN takes Tr and H/R only (no fictive-temperature weight)
+    return terms, K0, rho, lambda Tc: s[2] * (1 / (_in_file_T(Tc, T_unit) + toff) - 1 / (s[1] + toff)) / math.log(10)
 
 
-def read_lsdyna(path, to_pa, to_rho):
+def read_lsdyna(path, to_pa, to_rho, T_unit):
     lines = open(path).read().splitlines()
     i = next(j for j, l in enumerate(lines) if l.startswith("*MAT_GENERAL_VISCOELASTIC"))
     assert lines[i].rstrip().endswith("+")            # long format: 20-character fields
@@ -126,7 +126,7 @@ def read_lsdyna(path, to_pa, to_rho):
     terms = (to_pa * t[long_term, 0].sum(), to_pa * t[~long_term, 0], 1.0 / t[~long_term, 1])
 
     def log10_aT(Tc):
-        T = _in_file_T(Tc, path)
+        T = _in_file_T(Tc, T_unit)
         ln_phi = -A * (T - TREF) / (B + T - TREF) if B != 0 else -A * (1 / T - 1 / TREF)
         return -ln_phi / math.log(10)            # a_T = 1/Phi
     return terms, K, rho, log10_aT
@@ -136,7 +136,9 @@ _COMSOL_UNITS = {"Pa": 1.0, "MPa": 1e6, "s": 1.0, "K": 1.0, "J/mol": 1.0, "mJ/mo
                  "kg/m^3": 1.0, "t/mm^3": 1e12}
 
 
-def read_comsol(path_params, path_branches, to_pa, to_rho):
+def read_comsol(path_params, path_branches, to_pa, to_rho, T_unit=None):
+    """T_unit unused: every COMSOL temperature carries its unit in brackets. The branch file
+    is in Pa and s whatever the units (COMSOL reads it in the model's units, normally SI)."""
     p = {}
     text = open(path_params).read()
     assert "//" not in text and text.startswith("%")
@@ -151,7 +153,7 @@ def read_comsol(path_params, path_branches, to_pa, to_rho):
     br = np.loadtxt(path_branches, ndmin=2, comments="%")
     assert open(path_branches).read().startswith("%")
     np.testing.assert_array_equal(br[:, 0], np.arange(1, n + 1))
-    np.testing.assert_allclose(br[:, 1] * to_pa, Gi, rtol=1e-14)
+    np.testing.assert_allclose(br[:, 1], Gi, rtol=1e-14)
     np.testing.assert_allclose(br[:, 2], tau, rtol=1e-14)
     Tk = lambda Tc: np.asarray(Tc) + 273.15
     if "C1" in p:
@@ -169,7 +171,7 @@ def card_paths(fmt, out_dir, stem, temperature):
 
 def read_back(fmt, out_dir, stem, units, temperature):
     reader = {"abaqus": read_abaqus, "ansys": read_ansys, "lsdyna": read_lsdyna, "comsol": read_comsol}[fmt]
-    return reader(*card_paths(fmt, out_dir, stem, temperature), *UNIT_SCALE[units])
+    return reader(*card_paths(fmt, out_dir, stem, temperature), *UNIT_SCALE[units], temperature)
 
 
 def prony_G(terms):
@@ -231,18 +233,99 @@ def test_every_format_reads_back(tmp_path, d, units, temperature):
         _check(d, fmt, str(tmp_path), "mat", units, 0.42, temperature, rho=1150.0)
 
 
-def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch):
+@pytest.mark.parametrize("wrong_A", [lambda C1: C1, lambda C1: C1 * math.log(10)], ids=["A=C1", "A=+C1ln10"])
+def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch, wrong_A):
     """The LS-DYNA check can fail: with the base-10 constant A = C1 written (the old card),
-    the documented Phi puts log10 a_T 10 decades off at -20 C; the reader sees it."""
+    the documented Phi puts log10 a_T 10 decades off at -20 C; a sign error alone (A = +C1 ln
+    10) is caught too. The header says why A is negative."""
     path = _write(tmp_path, dict(WLF_MAT, shift=dict(WLF_MAT["shift"], C1=17.4, C2=51.6)))
     args = [path, "--format", "lsdyna", "--nu", "0.42", "--temperature", "K", "--density", "1150", "--full-spectrum"]
     d = json.loads(open(path).read())
     assert export_cli.main(args) == 0
     _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
-    monkeypatch.setattr(export, "lsdyna_shift", lambda m, T_unit: (m.T_ref + 273.15, m.shift["C1"], m.shift["C2"]))
+    text = open(card_paths("lsdyna", str(tmp_path), "mat", "K")[0]).read()
+    assert "A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T)" in text
+    assert re.search(r"check .*log10 a_T at 278.15 K = ", text)
+    monkeypatch.setattr(export, "lsdyna_shift",
+                        lambda m, T_unit: (m.T_ref + 273.15, wrong_A(m.shift["C1"]), m.shift["C2"]))
     assert export_cli.main(args) == 0
     with pytest.raises(AssertionError, match="log10 a_T"):
         _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
+
+
+def test_comsol_branch_file_is_in_pa_whatever_the_units(tmp_path):
+    """COMSOL's Load from File reads the branch table without units, in the model's unit
+    system (normally SI): with --units mm-N-s-MPa the branch moduli are still the fitted G_i
+    in Pa (the parameter file, with bracketed units, is in MPa), and its header says so."""
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "comsol", "--units", "mm-N-s-MPa", "--temperature", "K",
+                            "--full-spectrum"]) == 0
+    params, branches = card_paths("comsol", str(tmp_path), "mat", "K")
+    G = np.array(WLF_MAT["moduli"]) / (2 * 1.4)
+    br = np.loadtxt(branches, ndmin=2, comments="%")
+    np.testing.assert_allclose(br[:, 1], G, rtol=1e-14)
+    np.testing.assert_allclose(br[:, 2], WLF_MAT["times"], rtol=1e-14)
+    head = open(branches).read()
+    assert "shear modulus G_i [Pa]" in head and "always Pa and s" in head and "[MPa]" not in head
+    G1 = float(re.search(r'^G_1 ([-+0-9.eE]+)\[MPa\] ', open(params).read(), re.M).group(1))
+    assert abs(G1 / (G[0] * 1e-6) - 1) < 1e-14
+
+
+def test_evaluate_card_refuses_unknown_comsol_units(tmp_path):
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "comsol", "--temperature", "C", "--full-spectrum"]) == 0
+    params = card_paths("comsol", str(tmp_path), "mat", "C")[0]
+    text = open(params).read()
+    assert export.evaluate_card(params).terms == 5
+    open(params, "w").write(text.replace('[Pa] "long-term', '[kPa] "long-term'))     # an edit COMSOL would take
+    with pytest.raises(ValueError, match=re.escape(os.path.basename(params)) + r": unit 'kPa' of G_inf"):
+        export.evaluate_card(params)
+
+
+@pytest.mark.parametrize("units, R_text", [("SI", r"8\.31446\d* J/\(mol K\)"), ("mm-N-s-MPa", r"8314\.46\d* mJ/\(mol K\)")])
+def test_abaqus_arrhenius_states_R_and_reads_physical_constants(tmp_path, units, R_text):
+    """Abaqus' Arrhenius shift uses the model's R (*PHYSICAL CONSTANTS): the header says which
+    R the card assumes, and evaluate_card reads the keyword also once the user un-comments it."""
+    path = _write(tmp_path, dict(ARR_MAT, nu=0.4))
+    assert export_cli.main([path, "--format", "abaqus", "--units", units, "--temperature", "C",
+                            "--full-spectrum"]) == 0
+    inp = card_paths("abaqus", str(tmp_path), "mat", "C")[0]
+    text = open(inp).read()
+    assert re.search(r"^\*\* This card assumes the universal gas constant R = " + R_text + r" \(units " + units
+                     + r"\) and ABSOLUTE ZERO = -273\.15;", text, re.M)
+    T = np.array([-40.0, -10.0, 30.0])
+    before = export.evaluate_card(inp).log10_aT(T)
+    open(inp, "w").write(text.replace("** *PHYSICAL CONSTANTS", "*PHYSICAL CONSTANTS"))
+    np.testing.assert_allclose(export.evaluate_card(inp).log10_aT(T), before, rtol=1e-14)
+    np.testing.assert_allclose(before, Arrhenius(ARR_MAT["shift"]["Ea"], -10.0).log10_aT(T), rtol=1e-10, atol=1e-12)
+
+
+def test_abaqus_material_name_starts_with_a_letter(tmp_path):
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4), "2024_EPDM")
+    assert export_cli.main([path, "--format", "abaqus", "--temperature", "K", "--full-spectrum"]) == 0
+    text = open(card_paths("abaqus", str(tmp_path), "2024_EPDM", "K")[0]).read()
+    assert "*MATERIAL, NAME=M_2024_EPDM\n" in text
+    assert export_cli.main([path, "--format", "abaqus", "--temperature", "K", "--full-spectrum",
+                            "--stem", "epdm v2.1"]) == 0
+    assert "*MATERIAL, NAME=EPDM_V2_1\n" in open(card_paths("abaqus", str(tmp_path), "epdm v2.1", "K")[0]).read()
+
+
+def test_file_set_is_atomic(tmp_path, monkeypatch):
+    """An I/O error on the second file of an export leaves no file at all (no first card, no
+    temporary)."""
+    from fitting import files
+    path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
+    real, calls = files.write_temporary, []
+
+    def failing(p, data):
+        calls.append(p)
+        if len(calls) == 2:
+            raise OSError(28, "No space left on device")
+        return real(p, data)
+    monkeypatch.setattr(files, "write_temporary", failing)
+    with pytest.raises(OSError, match="No space left"):
+        export.export(export.load(path), "abaqus,ansys", str(tmp_path), "mat", temperature="K", terms="full")
+    assert len(calls) == 2 and os.listdir(tmp_path) == ["mat.json"]
 
 
 def test_bulk_modulus_and_shear_material(tmp_path):
