@@ -1,0 +1,408 @@
+"""Finite-length rigid journal bearing: the film over the bearing's width (issue 27).
+
+Called by :func:`vjax.journal_bearing` with ``length=L``; docs/theory.md §16.
+
+Geometry and frames
+-------------------
+Bore of radius R (centre O), journal of radius R - c, land z in [-L/2, L/2] with ambient
+pressure at both ends. The grid theta_i = 2 pi i / n is fixed in the bearing: theta = 0
+points along the load (its direction when the bearing is set up, so that derivatives with
+respect to the load vector do not turn the bearing). An axial supply groove at
+``supply_angle`` (rad from the load, counter-clockwise; default pi, opposite the load) holds
+``supply_pressure`` over the central fraction ``supply_width`` of the land (1: the whole
+width); ``supply_angle=None``: no groove, the ends alone set the datum. The journal centre
+at axial position z sits at e + z gamma from the bore's axis: e the eccentricity vector
+(unknown), gamma = ``tilt`` (rad, absolute x, y components: the journal's axis turned about
+y by gamma_x and about -x by gamma_y, small angles), so that
+
+    h(theta, z) = c - (e_x + z gamma_x) cos theta - (e_y + z gamma_y) sin theta
+
+(grid axes). Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default),
+"half_sommerfeld", "sommerfeld".
+
+Load control: the pressure force of the film on the journal balances ``load`` (N, the
+external force on the journal, total for the bearing); the unknowns are the scaled pressures
+and the eccentricity vector e/c (grid axes). With a tilt the film also exerts a moment on the
+journal (``moment``, about the centre plane z = 0), which the shaft must carry; the tilt is
+given, not solved for.
+
+Outputs (SI totals for the bearing)
+-----------------------------------
+``force`` on the housing (N, absolute; the load at equilibrium), ``moment`` of the film on the
+journal about the bore's centre point (N m, absolute x, y), ``position`` e (m, absolute),
+``eccentricity`` |e|/c, ``attitude_angle`` (from the load line to e, counter-clockwise),
+``line_of_centres_angle`` (absolute). ``min_film`` (m) and where: ``min_film_theta`` (grid
+angle, from the load) and ``min_film_z`` (m); ``max_pressure`` (Pa). Torques by the fluid
+(N m, counter-clockwise positive), shear tau_B = -h/2 dp/dx - eta (U_B - U_J)/h on the bore and
+tau_J = -h/2 dp/dx + eta (U_B - U_J)/h on the journal (U = omega R): ``torque`` on the housing
+about O, ``torque_shaft`` on the journal about its own centre, and their pressure-flow
+(Poiseuille) parts ``torque_poiseuille``, ``torque_poiseuille_shaft`` (the rest is Couette; the
+Reynolds cavity is taken as full of lubricant, as in Raimondi and Boyd). Flows (m^3/s):
+``side_leakage`` out of both ends, ``supply_flow`` the groove's net outflow, ``inlet_flow``
+the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``power_loss``
+(W): the viscous dissipation in the film, = -omega_B torque - omega_J torque_shaft + p_s
+supply_flow (the power balance of the discrete equations, up to the discretization).
+
+Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected)
+with the dense AD Jacobian (LU), derivatives implicit (:func:`vjax._solve.implicit_root`);
+grids up to about 96 x 24 (N = n (m - 1) unknowns, O(N^3) per step). ``throw=True`` raises
+:class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from functools import partial
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _checks, _film2d, _scene, _solve, reference, reynolds
+from .operator import grid
+
+CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+
+
+@dataclasses.dataclass(frozen=True)
+class FiniteJournalOptions:
+    """Static options of the finite bearing (``journal_bearing(..., length=L)``): ``n`` cells in
+    theta (even, >= 8), ``m`` axial intervals (even, >= 2: m + 1 nodes, the end ones at ambient
+    pressure), axial ``spacing`` "uniform" or "cosine" (nodes clustered at the ends, for long
+    bearings whose pressure drops to ambient within about R of the ends), Newton tolerance
+    ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32) and
+    ``max_iter`` Newton steps."""
+
+    n: int = 64
+    m: int = 16
+    spacing: str = "uniform"
+    tol: float | None = None
+    max_iter: int = 60
+
+    def __post_init__(self):
+        _checks.option_count("n", self.n, 8)
+        _checks.option_count("m", self.m, 2)
+        if self.n % 2 or self.m % 2:
+            raise ValueError(f"n and m must be even, got n={self.n}, m={self.m}")
+        _checks.one_of("spacing", self.spacing, _film2d.SPACINGS)
+        if self.tol is not None:
+            _checks.option_number("tol", self.tol)
+        _checks.option_count("max_iter", self.max_iter)
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True, repr=False)
+class FiniteJournalResult(_scene.SceneResult):
+    """Solution of ``journal_bearing(..., length=L)`` (SI totals for the bearing; see
+    :mod:`vjax.journal_finite`). Arrays on the grid: ``theta`` (n,) from the load direction
+    (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
+    ``displacement`` (n, m + 1) (zero: rigid bodies). Convergence: ``iterations``,
+    ``residual``, ``result``; ``converged`` is ``result == 0``."""
+
+    theta: jax.Array
+    z: jax.Array
+    pressure: jax.Array
+    film: jax.Array
+    displacement: jax.Array
+    force: jax.Array
+    moment: jax.Array
+    position: jax.Array
+    eccentricity: jax.Array
+    attitude_angle: jax.Array
+    line_of_centres_angle: jax.Array
+    min_film: jax.Array
+    min_film_theta: jax.Array
+    min_film_z: jax.Array
+    max_pressure: jax.Array
+    torque: jax.Array
+    torque_shaft: jax.Array
+    torque_poiseuille: jax.Array
+    torque_poiseuille_shaft: jax.Array
+    side_leakage: jax.Array
+    supply_flow: jax.Array
+    inlet_flow: jax.Array
+    power_loss: jax.Array
+    iterations: jax.Array
+    residual: jax.Array
+    result: jax.Array
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Differentiable parameters of the finite bearing (SI; grid axes: x along ``frame``)."""
+
+    R: jax.Array
+    RJ: jax.Array
+    c: jax.Array
+    L: jax.Array
+    eta: jax.Array
+    v: jax.Array                 # entrainment speed (m/s)
+    W: jax.Array                 # load magnitude (N)
+    load: jax.Array              # (2,) load on the journal, grid axes (N)
+    frame: jax.Array             # absolute angle of the grid's x axis (the load's at setup; not differentiated)
+    tilt: jax.Array              # (2,) grid axes (rad)
+    ps: jax.Array                # groove pressure (Pa)
+    omega_B: jax.Array
+    omega_J: jax.Array
+    p_ref: jax.Array             # W / (2 R L)
+    groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
+    x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
+
+
+@dataclasses.dataclass(frozen=True)
+class Config:
+    """Static configuration: cavitation model, options, tolerance."""
+
+    cavitation: str
+    options: FiniteJournalOptions
+    tol: float
+
+
+def _unknowns(cfg: Config):
+    return cfg.options.n * (cfg.options.m - 1)
+
+
+def fields(x, pr: Params, cfg: Config, motion=None):
+    """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
+    e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
+    position and gives the film's rate dh/dt (the dynamic coefficients)."""
+    n, m = cfg.options.n, cfg.options.m
+    N = _unknowns(cfg)
+    theta, _ = grid(n)
+    z = _film2d.axial_nodes(m, pr.L, cfg.options.spacing)
+    pz = x[:N].reshape(n, m - 1)
+    p = _film2d.with_ends(pz * pr.p_ref)
+    e = pr.c * x[N:N + 2]
+    hdot = jnp.zeros((n, m + 1), x.dtype)
+    if motion is not None:
+        e = e + motion[:2]
+        hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
+    h = _film2d.film(theta, z, pr.c, e, pr.tilt)
+    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e,
+                p_load=reynolds.load_pressure(p, cfg.cavitation))
+
+
+def cell_residual(x, pr: Params, cfg: Config, motion=None):
+    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes)."""
+    f = fields(x, pr, cfg, motion)
+    out = _film2d.net_outflow(f, pr.R, f["z"])
+    dth = 2 * jnp.pi / cfg.options.n
+    out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
+    scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
+    r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+    F, _ = _film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
+    return r.ravel(), F, jnp.min(f["h"])
+
+
+def equations(x, pr: Params, cfg: Config):
+    """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
+    r, F, hmin = cell_residual(x, pr, cfg)
+    return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
+
+
+def _guess(pr: Params, cfg: Config):
+    """Rigid estimate of the unknowns: the eccentricity whose load, the short (Ocvirk) and the
+    long half-Sommerfeld capacities combined in series (1/W = 1/W_short + 1/W_long), equals
+    the load, at their correspondingly weighted attitude angle; the long bearing's pressure
+    along theta times a parabola across the width, scaled to carry the load."""
+    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
+
+    def capacities(eps):
+        Ws = eta * 2 * v * L**3 / c**2 * eps * jnp.sqrt(16 * eps**2 + jnp.pi**2 * (1 - eps**2)) / (
+            4 * (1 - eps**2) ** 2)
+        Wl = 12 * eta * v * R**2 * L / c**2 * reference.half_sommerfeld_load(eps)
+        return Ws, Wl
+
+    def combined(eps):
+        Ws, Wl = capacities(eps)
+        return Ws * Wl / (Ws + Wl)
+
+    eps = _solve.bisect(lambda e: combined(e) - pr.W, jnp.asarray(1e-6, c.dtype), jnp.asarray(0.999, c.dtype), 50)
+    eps = jnp.minimum(eps, 0.95)
+    Ws, Wl = capacities(eps)
+    short = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 4 * eps)
+    long = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
+    phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
+    # the load direction in the grid, and the journal at phi ahead of it (behind for v < 0)
+    a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
+    n, m = cfg.options.n, cfg.options.m
+    theta, _ = grid(n)
+    z = _film2d.axial_nodes(m, L, cfg.options.spacing)[1:-1]
+    t = theta - a
+    p = (-12 * eta * pr.v * R * eps * jnp.sin(t) * (2 - eps * jnp.cos(t))
+         / (c**2 * (2 + eps**2) * (1 - eps * jnp.cos(t)) ** 2))
+    p = jnp.maximum(p, 0.0)[:, None] * (1 - (2 * z / L) ** 2)[None, :]
+    F, _ = _film2d.resultants(_film2d.with_ends(p), theta, _film2d.axial_nodes(m, L, cfg.options.spacing), R)
+    p = p * pr.W / jnp.maximum(jnp.hypot(F[0], F[1]), jnp.finfo(c.dtype).tiny) / pr.p_ref
+    # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
+    # zone by one cell per iteration
+    p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
+    return jnp.concatenate([p.ravel(), eps * jnp.stack([jnp.cos(a), jnp.sin(a)])])
+
+
+def _newton(pr: Params, cfg: Config):
+    def eqs(x, state):
+        r, hmin = equations(x, pr, cfg)
+        return r, state, hmin > 0
+
+    N = _unknowns(cfg)
+    x0 = jax.lax.stop_gradient(pr.x0)
+    cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap)
+    return x, stats
+
+
+def _outputs(x, pr: Params, cfg: Config, stats):
+    f = fields(x, pr, cfg)
+    n = cfg.options.n
+    N = _unknowns(cfg)
+    R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
+    dth = 2 * jnp.pi / n
+    wz = _film2d.node_widths(z)
+    hx, dpdx = f["hx"], f["dpdx"]
+    dU = pr.omega_B * R - pr.omega_J * RJ
+    poiseuille = (-0.5 * hx * dpdx) @ wz
+    couette = (eta * dU / hx) @ wz
+    arc = R * dth
+    TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
+    TB, TJ = TB_p - R * arc * jnp.sum(couette), TJ_p + RJ * arc * jnp.sum(couette)
+    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + eta * dU**2 / hx) @ wz) \
+        + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
+    leakage = _film2d.end_outflow(f["p"], f["h"], z, R, eta)
+    # the groove's flows: circumferential on every node of its column (the end nodes' half
+    # cells too: their Couette flow enters the land as well), axial on its interior cells
+    qx = f["qx"]
+    div_x = (qx - jnp.roll(qx, 1, axis=0)) * wz[None, :]
+    div_z = jnp.zeros_like(qx).at[:, 1:-1].set(jnp.diff(f["qz"], axis=1) * arc)
+    supply = jnp.sum(pr.groove * (div_x + div_z))
+    downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
+    inlet = jnp.sum(pr.groove * downstream * wz[None, :])
+    F, M = _film2d.resultants(f["p_load"], theta, z, R)
+    rot = lambda a: jnp.stack([jnp.cos(pr.frame) * a[0] - jnp.sin(pr.frame) * a[1],
+                               jnp.sin(pr.frame) * a[0] + jnp.cos(pr.frame) * a[1]])
+    e = f["e"]
+    h = f["h"]
+    k = jnp.argmin(h)
+    i, j = k // h.shape[1], k % h.shape[1]
+    load_dir = jnp.arctan2(pr.load[1], pr.load[0])
+    phi = jnp.angle(jnp.exp(1j * (jnp.arctan2(e[1], e[0]) - load_dir)))
+    return FiniteJournalResult(
+        theta=theta, z=z, pressure=f["p_load"], film=h, displacement=jnp.zeros_like(h), force=-rot(F),
+        moment=rot(M), position=rot(e), eccentricity=jnp.hypot(e[0], e[1]) / pr.c, attitude_angle=phi,
+        line_of_centres_angle=jnp.angle(jnp.exp(1j * (pr.frame + jnp.arctan2(e[1], e[0])))),
+        min_film=h[i, j], min_film_theta=theta[i], min_film_z=z[j], max_pressure=jnp.max(f["p_load"]),
+        torque=TB, torque_shaft=TJ, torque_poiseuille=TB_p, torque_poiseuille_shaft=TJ_p,
+        side_leakage=leakage, supply_flow=supply, inlet_flow=inlet, power_loss=power,
+        iterations=stats.iterations, residual=stats.residual, result=stats.result)
+
+
+def solve(pr: Params, cfg: Config, cold: bool = False) -> tuple[jax.Array, _solve.Stats]:
+    """The converged unknowns x (implicitly differentiable) and the Newton record; ``cold``:
+    start from the rigid estimate (:func:`_guess`) instead of ``pr.x0``."""
+    if cold:
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(_guess(pr, cfg)))
+    return _solve.implicit_root(lambda prm: _newton(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0])(pr)
+
+
+@partial(jax.jit, static_argnums=(1, 2))
+def _run(pr: Params, cfg: Config, cold: bool):
+    x, stats = solve(pr, cfg, cold)
+    return _outputs(x, pr, cfg, stats)
+
+
+def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
+          load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
+          supply_width=1.0, tilt=None, options: FiniteJournalOptions = FiniteJournalOptions()):
+    """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`)."""
+    _checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
+    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
+    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
+                         f"got {cavitation!r}")
+    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    if Rv is not None and cv is not None and not np.all(cv < Rv):
+        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
+    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
+        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
+                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
+    sw = _checks.values("supply_width", supply_width)
+    if sw is None or not (0 < sw <= 1):
+        raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
+                         f"got {supply_width!r}")
+    n, m = options.n, options.m
+    dtype = jnp.result_type(float)
+    f = lambda v: jnp.asarray(v, dtype)
+    load = jnp.asarray(load)
+    if load.ndim == 0:
+        _checks.positive("load", load)
+        Wvec = jnp.stack([load * jnp.cos(load_angle), load * jnp.sin(load_angle)])
+    elif load.shape == (2,):
+        lv = _checks.values("load", load)
+        if lv is not None and not np.hypot(*lv) > 0:
+            raise ValueError(f"load must be a non-zero vector, got {load!r}")
+        Wvec = load
+    else:
+        raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")
+    Wvec = f(Wvec)
+    frame = jax.lax.stop_gradient(jnp.arctan2(Wvec[1], Wvec[0]))
+    turn = lambda a: jnp.stack([jnp.cos(frame) * a[0] + jnp.sin(frame) * a[1],
+                                -jnp.sin(frame) * a[0] + jnp.cos(frame) * a[1]])
+    if tilt is None:
+        tilt = jnp.zeros(2, dtype)
+    else:
+        tilt = f(tilt)
+        _checks.finite("tilt", tilt)
+        if tilt.shape != (2,):
+            raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {tilt.shape}")
+    groove = jnp.zeros((n, m + 1), dtype)
+    if supply_angle is not None:
+        _scene.scalars(_checks.finite, supply_angle=supply_angle)
+        sa = _checks.values("supply_angle", supply_angle)
+        if sa is None:
+            raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
+        g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
+        s = np.asarray(_film2d.axial_nodes(m, 1.0, options.spacing)) * 2   # z / (L/2)
+        rows = np.abs(s) <= float(sw) * (1 + 1e-12)
+        groove = groove.at[g].set(jnp.asarray(rows, dtype))
+    W = jnp.hypot(Wvec[0], Wvec[1])
+    v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
+    floor = 1e-10 if dtype == jnp.float64 else 1e-4
+    cfg = Config(cavitation, options, float(options.tol if options.tol is not None else floor))
+    pr = Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
+                W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
+                omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=groove,
+                x0=jnp.zeros(_unknowns(cfg) + 2, dtype))
+    return pr, cfg
+
+
+def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
+                           load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
+                           supply_width=1.0, tilt=None, initial: FiniteJournalResult | None = None,
+                           options: FiniteJournalOptions = FiniteJournalOptions(),
+                           throw: bool = True) -> FiniteJournalResult:
+    """Steady state of a finite rigid journal bearing of axial ``length`` L (m) under ``load``
+    (N, total). Called by :func:`vjax.journal_bearing` with ``length=``; the arguments are
+    its own (module docstring), plus ``supply_width`` (fraction of L the axial groove spans,
+    centred; default 1) and ``tilt`` (gamma_x, gamma_y) (rad, absolute axes; the journal centre
+    at axial position z is displaced by z gamma). Returns :class:`FiniteJournalResult`."""
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
+                    omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+                    supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width,
+                    tilt=tilt, options=options)
+    n, m = options.n, options.m
+    if initial is not None:
+        if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
+            raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
+        c = pr.c
+        back = jnp.stack([jnp.cos(pr.frame) * initial.position[0] + jnp.sin(pr.frame) * initial.position[1],
+                          -jnp.sin(pr.frame) * initial.position[0] + jnp.cos(pr.frame) * initial.position[1]])
+        x0 = jnp.concatenate([(initial.pressure[:, 1:-1] / pr.p_ref).ravel(), back / c])
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(pr.x0.dtype))
+    sol = _run(pr, cfg, initial is None)
+    _solve.report("journal_bearing (finite length)", sol, throw)
+    return sol
