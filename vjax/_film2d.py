@@ -29,21 +29,25 @@ Film of a journal tilted in the bearing (grid axes: theta from the grid's x axis
 from __future__ import annotations
 
 import jax.numpy as jnp
+import numpy as np
 
 from . import reynolds
 
 SPACINGS = ("uniform", "cosine")
 
 
+def unit_nodes(m: int, spacing: str = "uniform"):
+    """Axial nodes over L/2 (m + 1,), -1 ... 1 (numpy: static grid data): uniform, or "cosine"
+    (Chebyshev-Lobatto, -cos(pi j / m)): nodes clustered at the ends, where a long bearing's
+    pressure falls to ambient over a distance of about R while it is flat over the rest."""
+    j = np.arange(m + 1)
+    s = -np.cos(np.pi * j / m) if spacing == "cosine" else 2.0 * j / m - 1.0
+    return 0.5 * (s - s[::-1])       # exact ends and mirror symmetry (the cosine's round-off)
+
+
 def axial_nodes(m: int, length, spacing: str = "uniform"):
-    """z nodes (m + 1,) from -L/2 to L/2 (m): uniform, or "cosine" (Chebyshev-Lobatto,
-    -L/2 cos(pi j / m)): nodes clustered at the ends, where a long bearing's pressure falls to
-    ambient over a distance of about R while it is flat over the rest of the width."""
-    j = jnp.arange(m + 1)
-    s = -jnp.cos(jnp.pi * j / m) if spacing == "cosine" else 2.0 * j / m - 1.0
-    # exact end nodes and symmetry (the cosine's round-off would break the mirror image)
-    s = 0.5 * (s - s[::-1])
-    return 0.5 * length * s
+    """z nodes (m + 1,) from -L/2 to L/2 (m): :func:`unit_nodes` times L/2."""
+    return 0.5 * length * unit_nodes(m, spacing)
 
 
 def node_widths(z):

@@ -58,7 +58,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _film2d, _scene, _solve, reference, reynolds
+from . import _blocks, _checks, _film2d, _scene, _solve, reference, reynolds
 from .operator import grid
 
 CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
@@ -147,30 +147,34 @@ class Params:
     omega_J: jax.Array
     p_ref: jax.Array             # W / (2 R L)
     groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
+    s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
     x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
 
 
 @dataclasses.dataclass(frozen=True)
 class Config:
-    """Static configuration: cavitation model, options, tolerance."""
+    """Static configuration: cavitation model, grid size, Newton's tolerance and step cap (the
+    axial spacing is a parameter, ``Params.s``: uniform and cosine grids share one compile)."""
 
     cavitation: str
-    options: FiniteJournalOptions
+    n: int
+    m: int
     tol: float
+    max_iter: int
 
 
 def _unknowns(cfg: Config):
-    return cfg.options.n * (cfg.options.m - 1)
+    return cfg.n * (cfg.m - 1)
 
 
 def fields(x, pr: Params, cfg: Config, motion=None):
     """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
     e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
     position and gives the film's rate dh/dt (the dynamic coefficients)."""
-    n, m = cfg.options.n, cfg.options.m
+    n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     theta, _ = grid(n)
-    z = _film2d.axial_nodes(m, pr.L, cfg.options.spacing)
+    z = 0.5 * pr.L * pr.s
     pz = x[:N].reshape(n, m - 1)
     p = _film2d.with_ends(pz * pr.p_ref)
     e = pr.c * x[N:N + 2]
@@ -188,7 +192,7 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None):
     """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes)."""
     f = fields(x, pr, cfg, motion)
     out = _film2d.net_outflow(f, pr.R, f["z"])
-    dth = 2 * jnp.pi / cfg.options.n
+    dth = 2 * jnp.pi / cfg.n
     out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
     scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
     r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
@@ -227,14 +231,14 @@ def _guess(pr: Params, cfg: Config):
     phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
     # the load direction in the grid, and the journal at phi ahead of it (behind for v < 0)
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
-    n, m = cfg.options.n, cfg.options.m
+    n, m = cfg.n, cfg.m
     theta, _ = grid(n)
-    z = _film2d.axial_nodes(m, L, cfg.options.spacing)[1:-1]
+    z = 0.5 * L * pr.s[1:-1]
     t = theta - a
     p = (-12 * eta * pr.v * R * eps * jnp.sin(t) * (2 - eps * jnp.cos(t))
          / (c**2 * (2 + eps**2) * (1 - eps * jnp.cos(t)) ** 2))
     p = jnp.maximum(p, 0.0)[:, None] * (1 - (2 * z / L) ** 2)[None, :]
-    F, _ = _film2d.resultants(_film2d.with_ends(p), theta, _film2d.axial_nodes(m, L, cfg.options.spacing), R)
+    F, _ = _film2d.resultants(_film2d.with_ends(p), theta, 0.5 * L * pr.s, R)
     p = p * pr.W / jnp.maximum(jnp.hypot(F[0], F[1]), jnp.finfo(c.dtype).tiny) / pr.p_ref
     # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
     # zone by one cell per iteration
@@ -242,21 +246,59 @@ def _guess(pr: Params, cfg: Config):
     return jnp.concatenate([p.ravel(), eps * jnp.stack([jnp.cos(a), jnp.sin(a)])])
 
 
-def _newton(pr: Params, cfg: Config):
+def linear_model(x, pr: Params, cfg: Config):
+    """``(solve, solve_transpose)`` of the Newton system at x, exact and direct: the cell
+    equations' Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1
+    cells across the width, cyclic), bordered by the two position columns and force rows
+    (:func:`vjax._blocks.bordered_solver`, O(n m^3))."""
+    n, m = cfg.n, cfg.m
+    N = _unknowns(cfg)
+    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg)[0]
+    blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, m - 1)
+    full = lambda y: equations(y, pr, cfg)[0]
+    _, matvec = jax.linearize(full, x)
+    _, vjp = jax.vjp(full, x)
+    unit = jnp.eye(N + 2, dtype=x.dtype)[N:]
+    cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
+    rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
+    return _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
+
+
+def _newton(x0, pr: Params, cfg: Config):
     def eqs(x, state):
         r, hmin = equations(x, pr, cfg)
         return r, state, hmin > 0
 
     N = _unknowns(cfg)
-    x0 = jax.lax.stop_gradient(pr.x0)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap)
+    x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
+                                linear_solve=lambda x, state, r: linear_model(x, pr, cfg)[0](-r))
     return x, stats
+
+
+def _steady(pr: Params, cfg: Config):
+    """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
+    stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
+    solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
+    raised by 0.1 p_ref."""
+    x0 = jax.lax.stop_gradient(pr.x0)
+    x, stats = _newton(x0, pr, cfg)
+    if cfg.cavitation != "reynolds":
+        return x, stats
+
+    def fallback(_):
+        N = _unknowns(cfg)
+        xh, sh = _newton(x0, pr, dataclasses.replace(cfg, cavitation="half_sommerfeld"))
+        start = xh.at[:N].set(jnp.where(pr.groove[:, 1:-1].ravel() > 0, xh[:N], jnp.maximum(xh[:N], 0.0) + 0.1))
+        x2, s2 = _newton(start, pr, cfg)
+        result = jnp.where(sh.converged, s2.result, sh.result)
+        return x2, _solve.Stats(stats.iterations + sh.iterations + s2.iterations, s2.residual, result)
+    return jax.lax.cond(stats.converged, lambda _: (x, stats), fallback, None)
 
 
 def _outputs(x, pr: Params, cfg: Config, stats):
     f = fields(x, pr, cfg)
-    n = cfg.options.n
+    n = cfg.n
     N = _unknowns(cfg)
     R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
     dth = 2 * jnp.pi / n
@@ -271,12 +313,11 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + eta * dU**2 / hx) @ wz) \
         + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
     leakage = _film2d.end_outflow(f["p"], f["h"], z, R, eta)
-    # the groove's flows: circumferential on every node of its column (the end nodes' half
-    # cells too: their Couette flow enters the land as well), axial on its interior cells
+    # the groove's net outflow: its interior cells, the ones held at the supply pressure; its
+    # downstream flow into the land: every node of its column (the end nodes' half cells carry
+    # Couette flow too)
+    supply = jnp.sum(pr.groove[:, 1:-1] * _film2d.net_outflow(f, R, z))
     qx = f["qx"]
-    div_x = (qx - jnp.roll(qx, 1, axis=0)) * wz[None, :]
-    div_z = jnp.zeros_like(qx).at[:, 1:-1].set(jnp.diff(f["qz"], axis=1) * arc)
-    supply = jnp.sum(pr.groove * (div_x + div_z))
     downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
     inlet = jnp.sum(pr.groove * downstream * wz[None, :])
     F, M = _film2d.resultants(f["p_load"], theta, z, R)
@@ -303,7 +344,8 @@ def solve(pr: Params, cfg: Config, cold: bool = False) -> tuple[jax.Array, _solv
     start from the rigid estimate (:func:`_guess`) instead of ``pr.x0``."""
     if cold:
         pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(_guess(pr, cfg)))
-    return _solve.implicit_root(lambda prm: _newton(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0])(pr)
+    return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
+                                lambda x, aux, prm: linear_model(x, prm, cfg))(pr)
 
 
 @partial(jax.jit, static_argnums=(1, 2))
@@ -359,23 +401,24 @@ def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omeg
         _checks.finite("tilt", tilt)
         if tilt.shape != (2,):
             raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {tilt.shape}")
-    groove = jnp.zeros((n, m + 1), dtype)
+    groove = np.zeros((n, m + 1))
     if supply_angle is not None:
         _scene.scalars(_checks.finite, supply_angle=supply_angle)
         sa = _checks.values("supply_angle", supply_angle)
         if sa is None:
             raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
-        s = np.asarray(_film2d.axial_nodes(m, 1.0, options.spacing)) * 2   # z / (L/2)
-        rows = np.abs(s) <= float(sw) * (1 + 1e-12)
-        groove = groove.at[g].set(jnp.asarray(rows, dtype))
+        s = _film2d.unit_nodes(m, options.spacing)     # z / (L/2)
+        groove[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
+    groove = jnp.asarray(groove, dtype)
     W = jnp.hypot(Wvec[0], Wvec[1])
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
     floor = 1e-10 if dtype == jnp.float64 else 1e-4
-    cfg = Config(cavitation, options, float(options.tol if options.tol is not None else floor))
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
     pr = Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
                 W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
                 omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=groove,
+                s=jnp.asarray(_film2d.unit_nodes(m, options.spacing), dtype),
                 x0=jnp.zeros(_unknowns(cfg) + 2, dtype))
     return pr, cfg
 
@@ -406,3 +449,25 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omeg
     sol = _run(pr, cfg, initial is None)
     _solve.report("journal_bearing (finite length)", sol, throw)
     return sol
+
+
+def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
+                           omega_housing, load_angle, memory, cavitation, supply_angle, supply_pressure,
+                           supply_width, groove, tilt, temperature, shift, initial, options, throw):
+    """:func:`vjax.journal_bearing`'s arguments -> :func:`finite_journal_bearing`, refusing
+    what the finite bearing does not have (yet): deformable bodies, JFO, a turning groove."""
+    if length is None:
+        raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
+    if housing is not None or shaft is not None or temperature is not None or shift is not None:
+        raise ValueError("housing, shaft (and temperature, shift): the finite bearing (length=) has rigid bodies "
+                         "only so far; use the infinitely long bearing (length=None) for deformable ones")
+    if groove not in (None, "fixed"):
+        raise ValueError(f"groove must be 'fixed' (in the bearing) with length=, got {groove!r}")
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
+                         f"got {cavitation!r}")
+    return finite_journal_bearing(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
+                                  omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+                                  supply_angle=supply_angle, supply_pressure=supply_pressure,
+                                  supply_width=supply_width, tilt=tilt, initial=initial, options=options,
+                                  throw=throw)
