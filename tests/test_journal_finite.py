@@ -60,17 +60,22 @@ def test_short_bearing_limit_ocvirk():
     assert 0 < ratios[0.05] - 1 < ratios[0.1] - 1 < ratios[0.2] - 1
 
 
+SOMMERFELD_LONG = FiniteJournalOptions(n=OPT.n, m=OPT.m, spacing="cosine")
+
+
 def test_long_bearing_limit():
-    """L/D -> infinity (Reynolds conditions, the same groove fixed opposite the load, the same
-    n): the end leakage shifts the eccentricity by about 2 D/L (4.0% at L/D = 50, 2.0% at 100:
-    the pressure falls to ambient within about R of each end), so the finite bearing meets
-    the long one as D/L -> 0: the extrapolation from L/D = 50 and 100 agrees to 1e-3."""
+    """L/D -> infinity (full Sommerfeld film, the same groove fixed opposite the load, the
+    same n; cosine axial spacing): the end leakage shifts the eccentricity by about 2 D/L
+    (the pressure falls to ambient within about R of each end: a load deficit of order D/L,
+    about 4% at L/D = 50), so the finite bearing meets the long one as D/L -> 0: the
+    extrapolation from L/D = 50 and 100 agrees to 1e-3 (Reynolds conditions: 7.6e-4 at
+    n = 32, m = 32)."""
     W1 = long_load(0.6)
-    long = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed", options=JournalOptions(n=OPT.n))
-    opt = FiniteJournalOptions(n=OPT.n, m=OPT.m, spacing="cosine")
+    long = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed", cavitation="sommerfeld",
+                           options=JournalOptions(n=OPT.n))
     eps, phi = {}, {}
     for LD in (50.0, 100.0):
-        s = finite(W1 * LD * D, LD, options=opt)
+        s = finite(W1 * LD * D, LD, cavitation="sommerfeld", options=SOMMERFELD_LONG)
         eps[LD], phi[LD] = float(s.eccentricity), float(s.attitude_angle)
     e0, p0 = float(long.eccentricity), float(long.attitude_angle)
     assert 0.5 < (eps[50.0] / e0 - 1) * 50 < 3.0
@@ -140,25 +145,25 @@ def test_ross_cross_check():
     """Issue 27's measurement against ROSS 3.1 (finite elements over the land, groove fixed at
     the maximum film), L/D = 1, eps 0.3 / 0.5 / 0.7: at the load of the long bearing (groove at
     its maximum film) times L, ROSS's bearing runs at eps 0.68 / 0.78 / 0.85, and the long
-    bearing's load over the finite one at equal eps is 4.7 / 3.6 / 2.6. vjax (48 x 12):
-    0.688 / 0.787 / 0.856 and 4.69 / 3.67 / 2.64 (96 x 24: 4.65 / 3.63 / 2.61). (The issue's
+    bearing's load over the finite one at equal eps is 4.7 / 3.6 / 2.6. vjax (48 x 32):
+    0.685 / 0.785 / 0.855 and 4.69 / 3.67 / 2.64 (96 x 24: 4.65 / 3.63 / 2.61). (The issue's
     3.5 / 2.9 / 2.1 for a long bearing with a fixed groove depends on where that groove sits
     in the long bearing, which the issue does not state: with it at the finite bearing's
     maximum film, vjax's long bearing gives 4.5 / 3.7 / 2.7.)"""
     L = D
     for eps, eps_ross, ratio_ross in ((0.3, 0.68, 4.7), (0.5, 0.78, 3.6), (0.7, 0.85, 2.6)):
         W_long = long_load(eps)
-        phi = 1.0
-        for _ in range(5):          # the groove follows the maximum film
-            s = finite(W_long * L, 1.0, supply_angle=np.pi + phi)
+        phi = 0.6
+        for _ in range(3):          # the groove follows the maximum film
+            s = finite(W_long * L, 1.0, supply_angle=np.pi + phi, initial=None)
             phi = float(s.attitude_angle)
         assert abs(float(s.eccentricity) - eps_ross) < 0.015
-        W = W_long * L / 3
-        for _ in range(8):          # the load at eps (fixed point on the long bearing's load curve)
+        W = W_long * L / ratio_ross
+        for _ in range(4):          # the load at eps (fixed point on the long bearing's load curve)
             s = finite(W, 1.0, supply_angle=np.pi + phi)
             phi = float(s.attitude_angle)
             W *= W_long / long_load(float(s.eccentricity))
-        assert abs(float(s.eccentricity) - eps) < 1e-3
+        assert abs(float(s.eccentricity) - eps) < 2e-3
         assert W_long * L / W == pytest.approx(ratio_ross, rel=0.05)
 
 
@@ -262,3 +267,82 @@ def test_float32_runs_without_nan():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
                          cwd=str(Path(__file__).resolve().parents[1]), timeout=300)
     assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]
+
+
+# ---------------------------------------------------------------- dynamic coefficients
+@pytest.fixture(scope="module")
+def coefficients():
+    W = jnp.array([0.0, -0.5 * long_load(0.5) * D])
+    return W, vjax.journal_coefficients(R, C, ETA, W, [0.0, 80.0], omega_shaft=WJ, length=D, options=OPT)
+
+
+def test_coefficients_static_stiffness(coefficients):
+    """K (whirl-independent for the rigid film) is the inverse of d(journal position)/d(load
+    vector) by jax.jacfwd of the steady solution (the groove stays fixed in the bearing)."""
+    W, co = coefficients
+    assert np.allclose(np.asarray(co.stiffness[0]), np.asarray(co.stiffness[1]), rtol=1e-14)
+    position = lambda Wv: journal_bearing(R, C, ETA, Wv, omega_shaft=WJ, length=D, options=OPT,
+                                          initial=co.steady).position
+    K = np.linalg.inv(np.asarray(jax.jacfwd(position)(W)))
+    assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
+    # a rigid film's damping is symmetric
+    Cd = np.asarray(co.damping[0])
+    assert abs(Cd[0, 1] - Cd[1, 0]) < 1e-9 * np.abs(Cd).max()
+
+
+def test_coefficients_against_nonlinear_solves(coefficients):
+    """Central differences of the nonlinear film force with the journal held at perturbed
+    positions and velocities (Newton on the cell equations, :func:`journal_finite.force_at`), 1e-3."""
+    W, co = coefficients
+    pr, cfg = journal_finite.setup(R, C, ETA, W, D, omega_shaft=WJ, options=OPT)
+    frame = float(pr.frame)
+    rot = np.array([[np.cos(frame), -np.sin(frame)], [np.sin(frame), np.cos(frame)]])
+    x0 = jnp.concatenate([(co.steady.pressure[:, 1:-1] / pr.p_ref).ravel(),
+                          jnp.asarray(rot.T @ np.asarray(co.steady.position) / C)])
+    K, Cd = np.zeros((2, 2)), np.zeros((2, 2))
+    for j in range(2):
+        for start, M, d in ((0, K, 1e-4 * C), (2, Cd, 1e-4 * C * WJ)):
+            motion = np.zeros(4)
+            motion[start + j] = d
+            Fp, sp = journal_finite.force_at(x0, pr, cfg, jnp.asarray(motion))
+            Fm, sm = journal_finite.force_at(x0, pr, cfg, jnp.asarray(-motion))
+            assert bool(sp.converged) and bool(sm.converged)
+            M[:, j] = -(np.asarray(Fp) - np.asarray(Fm)) / (2 * d)
+    K, Cd = rot @ K @ rot.T, rot @ Cd @ rot.T
+    assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-3 * np.abs(K).max()
+    assert np.max(np.abs(np.asarray(co.damping[0]) - Cd)) < 1e-3 * np.abs(Cd).max()
+
+
+def test_coefficients_tend_to_the_long_bearing():
+    """As L/D grows (full Sommerfeld film, groove fixed opposite the load), K/L and C/L tend
+    to the fixed-groove long bearing's, at rate D/L (3.6%, 1.9%, 1.0% of the largest entry at
+    L/D = 25, 50, 100): extrapolated from 50 and 100, 1.1e-3 (K) and 8e-4 (C). Under Reynolds
+    conditions the rupture boundary's cell jumps scatter them by several % on these grids
+    (issue 27, point 5)."""
+    W1 = long_load(0.6)
+    long = vjax.journal_coefficients(R, C, ETA, W1, 0.0, omega_shaft=WJ, groove="fixed", cavitation="sommerfeld",
+                                     options=JournalOptions(n=OPT.n))
+    K0, C0 = np.asarray(long.stiffness[0]), np.asarray(long.damping[0])
+    K, Cd = {}, {}
+    for LD in (50.0, 100.0):
+        co = vjax.journal_coefficients(R, C, ETA, W1 * LD * D, 0.0, omega_shaft=WJ, length=LD * D,
+                                       cavitation="sommerfeld", options=SOMMERFELD_LONG)
+        K[LD], Cd[LD] = np.asarray(co.stiffness[0]) / (LD * D), np.asarray(co.damping[0]) / (LD * D)
+    assert np.max(np.abs(K[100.0] - K0)) < 0.02 * np.abs(K0).max()
+    assert np.max(np.abs(2 * K[100.0] - K[50.0] - K0)) < 2e-3 * np.abs(K0).max()
+    assert np.max(np.abs(2 * Cd[100.0] - Cd[50.0] - C0)) < 2e-3 * np.abs(C0).max()
+
+
+def test_coefficient_tables(coefficients, tmp_path):
+    """A finite bearing's table holds its own totals (another length is refused); the long
+    bearing's length scaling warns that it is the infinitely long bearing's."""
+    _, co = coefficients
+    cols = co.table()
+    assert np.allclose(cols["kxy"], np.asarray(co.stiffness[:, 0, 1]), rtol=1e-15)
+    data = np.genfromtxt(co.save_csv(tmp_path / "finite.csv", length=D), delimiter=",", names=True)
+    assert np.allclose(data["cyy"], np.asarray(co.damping[:, 1, 1]), rtol=1e-15)
+    with pytest.raises(ValueError, match="length"):
+        co.table(length=2 * D)
+    long = vjax.journal_coefficients(R, C, ETA, 2e4, 0.0, omega_shaft=WJ, options=JournalOptions(n=16))
+    with pytest.warns(UserWarning, match="infinitely long"):
+        long.table(length=D)

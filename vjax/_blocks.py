@@ -45,6 +45,13 @@ def neighbourhood_blocks(fn, x, n: int, k: int):
     return block(-1), block(0), block(1)
 
 
+def _mm(a, b):
+    """a @ b for small blocks as a fused multiply-add loop: XLA's CPU dot hands each product to
+    its thread pool, and hundreds of tiny products in a scan then wait on the pool at every
+    step (tens of times slower on a loaded machine)."""
+    return jnp.sum(a[..., :, :, None] * b[..., None, :, :], axis=-2)
+
+
 def _factor(lower, diag, upper):
     """Block Thomas factorization of the non-cyclic block tridiagonal T (lower[0], upper[-1]
     ignored): per block the LU of the pivot D_i - L_i C_{i-1} and C_i = pivot^-1 U_i."""
@@ -53,7 +60,7 @@ def _factor(lower, diag, upper):
 
     def step(C_prev, blocks):
         Li, Di, Ui = blocks
-        lu = jax.scipy.linalg.lu_factor(Di - Li @ C_prev)
+        lu = jax.scipy.linalg.lu_factor(Di - _mm(Li, C_prev))
         C = jax.scipy.linalg.lu_solve(lu, Ui)
         return C, (lu, C)
     _, (lus, Cs) = jax.lax.scan(step, jnp.zeros((k, k), diag.dtype), (lower.at[0].set(0.0), diag, upper))
@@ -67,13 +74,13 @@ def _solve(factors, lower, B):
 
     def forward(Y_prev, blocks):
         lu, Li, Bi = blocks
-        Y = jax.scipy.linalg.lu_solve(lu, Bi - Li @ Y_prev)
+        Y = jax.scipy.linalg.lu_solve(lu, Bi - _mm(Li, Y_prev))
         return Y, Y
     _, Ys = jax.lax.scan(forward, jnp.zeros(B.shape[1:], B.dtype), (lus, lower, B))
 
     def backward(X_next, blocks):
         C, Y = blocks
-        X = Y - C @ X_next
+        X = Y - _mm(C, X_next)
         return X, X
     _, Xs = jax.lax.scan(backward, jnp.zeros(B.shape[1:], B.dtype), (Cs, Ys), reverse=True)
     return Xs

@@ -167,10 +167,11 @@ def _unknowns(cfg: Config):
     return cfg.n * (cfg.m - 1)
 
 
-def fields(x, pr: Params, cfg: Config, motion=None):
+def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False):
     """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
     e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
-    position and gives the film's rate dh/dt (the dynamic coefficients)."""
+    position and gives the film's rate dh/dt (the dynamic coefficients). ``relaxed`` (traced
+    bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     theta, _ = grid(n)
@@ -184,25 +185,30 @@ def fields(x, pr: Params, cfg: Config, motion=None):
         hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
     h = _film2d.film(theta, z, pr.c, e, pr.tilt)
     f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
-    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e,
-                p_load=reynolds.load_pressure(p, cfg.cavitation))
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load)
 
 
-def cell_residual(x, pr: Params, cfg: Config, motion=None):
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False):
     """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes)."""
-    f = fields(x, pr, cfg, motion)
+    f = fields(x, pr, cfg, motion, relaxed)
     out = _film2d.net_outflow(f, pr.R, f["z"])
     dth = 2 * jnp.pi / cfg.n
     out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
     scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
     r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        sommerfeld = _film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+        r = jnp.where(relaxed, sommerfeld, r)
     F, _ = _film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
     return r.ravel(), F, jnp.min(f["h"])
 
 
-def equations(x, pr: Params, cfg: Config):
+def equations(x, pr: Params, cfg: Config, relaxed=False):
     """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
-    r, F, hmin = cell_residual(x, pr, cfg)
+    r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed)
     return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
 
 
@@ -246,16 +252,16 @@ def _guess(pr: Params, cfg: Config):
     return jnp.concatenate([p.ravel(), eps * jnp.stack([jnp.cos(a), jnp.sin(a)])])
 
 
-def linear_model(x, pr: Params, cfg: Config):
+def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     """``(solve, solve_transpose)`` of the Newton system at x, exact and direct: the cell
     equations' Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1
     cells across the width, cyclic), bordered by the two position columns and force rows
     (:func:`vjax._blocks.bordered_solver`, O(n m^3))."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
-    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg)[0]
+    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, relaxed=relaxed)[0]
     blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, m - 1)
-    full = lambda y: equations(y, pr, cfg)[0]
+    full = lambda y: equations(y, pr, cfg, relaxed)[0]
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
     unit = jnp.eye(N + 2, dtype=x.dtype)[N:]
@@ -264,15 +270,15 @@ def linear_model(x, pr: Params, cfg: Config):
     return _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
 
 
-def _newton(x0, pr: Params, cfg: Config):
+def _newton(x0, pr: Params, cfg: Config, relaxed=False):
     def eqs(x, state):
-        r, hmin = equations(x, pr, cfg)
+        r, hmin = equations(x, pr, cfg, relaxed)
         return r, state, hmin > 0
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
-                                linear_solve=lambda x, state, r: linear_model(x, pr, cfg)[0](-r))
+                                linear_solve=lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r))
     return x, stats
 
 
@@ -280,20 +286,30 @@ def _steady(pr: Params, cfg: Config):
     """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
     stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
     solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
-    raised by 0.1 p_ref."""
+    raised by 0.1 p_ref. The stages run through one Newton (compiled once), the relaxation a
+    traced switch."""
     x0 = jax.lax.stop_gradient(pr.x0)
-    x, stats = _newton(x0, pr, cfg)
     if cfg.cavitation != "reynolds":
-        return x, stats
+        return _newton(x0, pr, cfg)
+    N = _unknowns(cfg)
+    held = pr.groove[:, 1:-1].ravel() > 0
 
-    def fallback(_):
-        N = _unknowns(cfg)
-        xh, sh = _newton(x0, pr, dataclasses.replace(cfg, cavitation="half_sommerfeld"))
-        start = xh.at[:N].set(jnp.where(pr.groove[:, 1:-1].ravel() > 0, xh[:N], jnp.maximum(xh[:N], 0.0) + 0.1))
-        x2, s2 = _newton(start, pr, cfg)
-        result = jnp.where(sh.converged, s2.result, sh.result)
-        return x2, _solve.Stats(stats.iterations + sh.iterations + s2.iterations, s2.residual, result)
-    return jax.lax.cond(stats.converged, lambda _: (x, stats), fallback, None)
+    def cond(c):
+        k, _, _, st = c
+        return (k == 0) | ((k == 1) & ~st.converged) | ((k == 2) & st.converged)
+
+    def body(c):
+        k, x, its, _ = c
+        relaxed = k == 1
+        x1, st = _newton(jnp.where(relaxed, x0, x), pr, cfg, relaxed)
+        # after the half-Sommerfeld stage: its pressure, clipped and raised, starts Reynolds
+        start = x1.at[:N].set(jnp.where(held, x1[:N], jnp.maximum(x1[:N], 0.0) + 0.1))
+        return k + 1, jnp.where(relaxed, start, x1), its + st.iterations, st
+
+    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    k, x, its, st = jax.lax.while_loop(cond, body, (0, x0, jnp.asarray(0), init))
+    # a failed half-Sommerfeld stage ends the solve with its own code
+    return x, _solve.Stats(its, st.residual, st.result)
 
 
 def _outputs(x, pr: Params, cfg: Config, stats):
@@ -471,3 +487,70 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
                                   supply_angle=supply_angle, supply_pressure=supply_pressure,
                                   supply_width=supply_width, tilt=tilt, initial=initial, options=options,
                                   throw=throw)
+
+
+@partial(jax.jit, static_argnums=(2,))
+def stiffness_damping(x0, pr: Params, cfg: Config):
+    """K and C (N/m, N s/m; absolute axes) of the rigid finite film about the steady unknowns
+    x0: the cell equations linearized (Fischer-Burmeister as is: a cavitated cell stays at
+    p = 0, a pressurized one conserves mass with the squeeze term R dtheta dz dh/dt) in the
+    pressures and the journal's motion (dX, dY, dX/dt, dY/dt), which changes the film by
+    -(dX cos theta + dY sin theta) and its rate likewise (the groove is fixed in the bearing,
+    the grid fixed in space). dp = -A^-1 B d(motion), dF = G dp:
+    K = G A^-1 B[:, :2], C = G A^-1 B[:, 2:] (dF = -(K dx + C dx/dt)); independent of the whirl
+    frequency for a rigid film. A from the block solver; differentiable through x0."""
+    N = _unknowns(cfg)
+    motion0 = jnp.zeros(4, x0.dtype)
+    cells = lambda pz, mo: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, mo)[0]
+    force = lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1]
+    blocks = _blocks.neighbourhood_blocks(lambda pz: cells(pz, motion0), x0[:N], cfg.n, cfg.m - 1)
+    empty = jnp.zeros((N, 0), x0.dtype)
+    solve, _ = _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x0.dtype))
+    B = jax.jacfwd(lambda mo: cells(x0[:N], mo))(motion0)              # (N, 4)
+    G = jax.jacrev(force)(x0[:N])                                       # (2, N)
+    KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (2, 4) = -dF/d(motion)
+    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
+    rot = jnp.array([[c, -s], [s, c]])
+    turn = lambda A: rot @ A @ rot.T
+    return turn(KC[:, :2]), turn(KC[:, 2:])
+
+
+def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config):
+    """(K, C) (N/m, N s/m, absolute axes) about a converged :class:`FiniteJournalResult` of the
+    bearing ``pr``, ``cfg`` (the steady solve of the same arguments); its pressure recovered
+    for the half-Sommerfeld film (whose result holds the clipped pressure) by one more solve."""
+    frame_back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
+                            -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
+    x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), frame_back / pr.c])
+    if cfg.cavitation == "half_sommerfeld":
+        x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
+    return stiffness_damping(x0, pr, cfg)
+
+
+def finite_coefficients(R, radial_clearance, viscosity, load, length, *, initial=None, throw=True, **kw):
+    """Steady :class:`FiniteJournalResult` and its (K, C) (N/m, N s/m, absolute axes) for
+    ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
+    :func:`finite_journal_bearing` (its rigid film's K, C do not depend on the whirl)."""
+    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
+    K, C = coefficients(steady, pr, cfg)
+    return steady, K, C
+
+
+@partial(jax.jit, static_argnums=(2,))
+def force_at(x, pr: Params, cfg: Config, motion):
+    """Film force on the journal (N, grid axes) with the journal held at the position of x
+    (its last two entries, e/c) plus ``motion`` (dX, dY, dX/dt, dY/dt) (m, m/s): the nonlinear
+    cell equations solved by Newton for the pressures from x's (the position control the
+    dynamic coefficients linearize); returns (force, :class:`~vjax._solve.Stats`)."""
+    N = _unknowns(cfg)
+    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[0]
+    empty = jnp.zeros((N, 0), x.dtype)
+
+    def linear_solve(pz, state, r):
+        blocks = _blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1)
+        return _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x.dtype))[0](-r)
+
+    pz, _, stats = _solve.newton(lambda pz, s: (cells(pz), s, True), x[:N], None, tol=cfg.tol,
+                                 max_iter=cfg.max_iter, linear_solve=linear_solve)
+    return cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[1], stats
