@@ -6,6 +6,9 @@ tridiagonal, n blocks of k x k, cyclic in theta. The two corner blocks of the ri
 rows and columns of a few global unknowns (the journal's position) are a low-rank
 correction: M = T + U V^T (T block tridiagonal, not cyclic) is solved by the Woodbury
 identity with a block Thomas factorization of T (O(n k^3)) and one small factorization.
+The blocks of a film's Jacobian are diagonally dominant (M-matrix rows; Fischer-Burmeister
+rows are non-negative combinations of such a row and a unit row), so the factorization does
+not pivot.
 Against a dense LU (O(n^3 k^3)) this is n^2 times cheaper; the Jacobian comes from 9-15
 Jacobian-vector products (a colouring of the 3 x 3 neighbourhood), not n k.
 """
@@ -52,31 +55,43 @@ def _mm(a, b):
     return jnp.sum(a[..., :, :, None] * b[..., None, :, :], axis=-2)
 
 
+def _inverse(A):
+    """Inverse of a small block by Gauss-Jordan elimination without pivoting, in plain XLA
+    loops: the film's blocks (and their Schur complements) are diagonally dominant, and
+    LAPACK's small-matrix calls (OpenBLAS threads) stall on a loaded machine."""
+    k = A.shape[0]
+
+    def step(i, M):
+        row = M[i] / M[i, i]
+        return (M - M[:, i, None] * row[None, :]).at[i].set(row)
+    return jax.lax.fori_loop(0, k, step, jnp.concatenate([A, jnp.eye(k, dtype=A.dtype)], axis=1))[:, k:]
+
+
 def _factor(lower, diag, upper):
     """Block Thomas factorization of the non-cyclic block tridiagonal T (lower[0], upper[-1]
-    ignored): per block the LU of the pivot D_i - L_i C_{i-1} and C_i = pivot^-1 U_i."""
+    ignored): per block the inverse of the pivot D_i - L_i C_{i-1} and C_i = pivot^-1 U_i."""
     k = diag.shape[1]
     upper = upper.at[-1].set(0.0)
 
     def step(C_prev, blocks):
         Li, Di, Ui = blocks
-        lu = jax.scipy.linalg.lu_factor(Di - _mm(Li, C_prev))
-        C = jax.scipy.linalg.lu_solve(lu, Ui)
-        return C, (lu, C)
-    _, (lus, Cs) = jax.lax.scan(step, jnp.zeros((k, k), diag.dtype), (lower.at[0].set(0.0), diag, upper))
-    return lus, Cs
+        inv = _inverse(Di - _mm(Li, C_prev))
+        C = _mm(inv, Ui)
+        return C, (inv, C)
+    _, (invs, Cs) = jax.lax.scan(step, jnp.zeros((k, k), diag.dtype), (lower.at[0].set(0.0), diag, upper))
+    return invs, Cs
 
 
 def _solve(factors, lower, B):
     """T^-1 B for B of shape (n, k, r), with the factors of :func:`_factor`."""
-    lus, Cs = factors
+    invs, Cs = factors
     lower = lower.at[0].set(0.0)
 
     def forward(Y_prev, blocks):
-        lu, Li, Bi = blocks
-        Y = jax.scipy.linalg.lu_solve(lu, Bi - _mm(Li, Y_prev))
+        inv, Li, Bi = blocks
+        Y = _mm(inv, Bi - _mm(Li, Y_prev))
         return Y, Y
-    _, Ys = jax.lax.scan(forward, jnp.zeros(B.shape[1:], B.dtype), (lus, lower, B))
+    _, Ys = jax.lax.scan(forward, jnp.zeros(B.shape[1:], B.dtype), (invs, lower, B))
 
     def backward(X_next, blocks):
         C, Y = blocks
