@@ -99,12 +99,13 @@ def _sommerfeld_force(n, m, LD=1.0):
 
 def test_second_order_in_both_directions():
     """Away from rupture (full Sommerfeld film): the force converges at second order in theta
-    (n = 16, 32, 64 at m = 8) and in z (m = 4, 8, 16 at n = 64), orders from three grids."""
+    (n = 16, 32, 64 at m = 4) and in z (m = 4, 8, 16 at n = 16), orders from three grids
+    (measured 1.99 and 1.95 with m = 8, resp. n = 64)."""
     def order(values):
         a, b, c = (np.hypot(*np.asarray(v)) for v in values)
         return np.log2(abs(a - b) / abs(b - c))
-    theta = order([_sommerfeld_force(n, 8) for n in (16, 32, 64)])
-    z = order([_sommerfeld_force(64, m) for m in (4, 8, 16)])
+    theta = order([_sommerfeld_force(n, 4) for n in (16, 32, 64)])
+    z = order([_sommerfeld_force(16, m) for m in (4, 8, 16)])
     assert 1.8 < theta < 2.2 and 1.8 < z < 2.2, (theta, z)
 
 
@@ -222,22 +223,36 @@ def test_misalignment_moment():
 
 
 # ---------------------------------------------------------------- derivatives
-def test_gradients_against_finite_differences():
-    """d(eccentricity, journal torque, side leakage, moment)/d(L, c, load) by implicit
-    forward differentiation, against central differences of converged solves (1e-5)."""
-    base = np.array([D, C, 0.5 * long_load(0.5) * D])
-    gamma = jnp.array([0.1, 0.0]) * C / D
+GAMMA = jnp.array([0.1, 0.0]) * C / D          # the journal's ends 0.05 c off its centre's line
 
-    def outputs(q):
-        s = journal_bearing(R, q[1], ETA, q[2], omega_shaft=WJ, length=q[0], tilt=gamma, options=OPT)
-        return jnp.stack([s.eccentricity, s.torque_shaft, s.side_leakage, s.moment[1]])
 
-    J = np.asarray(jax.jacfwd(outputs)(jnp.asarray(base)))
-    for k in range(3):
-        dq = np.zeros(3)
-        dq[k] = 1e-5 * base[k]
-        fd = (np.asarray(outputs(jnp.asarray(base + dq))) - np.asarray(outputs(jnp.asarray(base - dq)))) / (2 * dq[k])
-        assert np.allclose(J[:, k], fd, rtol=1e-5, atol=1e-7 * np.abs(fd).max()), (k, J[:, k], fd)
+def _outputs(q):
+    """eps, journal torque, side leakage, moment_y, position (x, y) of the tilted bearing at
+    q = (L, c, W_x, W_y)."""
+    s = journal_bearing(R, q[1], ETA, q[2:], omega_shaft=WJ, length=q[0], tilt=GAMMA, options=OPT)
+    return jnp.concatenate([jnp.stack([s.eccentricity, s.torque_shaft, s.side_leakage, s.moment[1]]), s.position])
+
+
+@pytest.fixture(scope="module")
+def tilted():
+    """The point (L, c, load vector), the implicit Jacobian of :func:`_outputs` there (one
+    jacfwd: one compile for the gradient and static-stiffness checks) and the coefficients."""
+    q = np.array([D, C, 0.0, -0.5 * long_load(0.5) * D])
+    J = np.asarray(jax.jit(jax.jacfwd(_outputs))(jnp.asarray(q)))
+    co = vjax.journal_coefficients(R, C, ETA, jnp.asarray(q[2:]), [0.0, 80.0], omega_shaft=WJ, length=D, tilt=GAMMA,
+                                   options=OPT)
+    return q, J, co
+
+
+def test_gradients_against_finite_differences(tilted):
+    """d(eccentricity, journal torque, side leakage, moment, position)/d(L, c, load) by
+    implicit forward differentiation, against central differences of converged solves (1e-5)."""
+    q, J, _ = tilted
+    for k in (0, 1, 3):
+        dq = np.zeros(4)
+        dq[k] = 1e-5 * abs(q[k])
+        fd = (np.asarray(_outputs(jnp.asarray(q + dq))) - np.asarray(_outputs(jnp.asarray(q - dq)))) / (2 * dq[k])
+        assert np.allclose(J[:, k], fd, rtol=1e-5, atol=1e-6 * np.abs(fd).max()), (k, J[:, k], fd)
 
 
 # ---------------------------------------------------------------- input, precision
@@ -270,31 +285,24 @@ def test_float32_runs_without_nan():
 
 
 # ---------------------------------------------------------------- dynamic coefficients
-@pytest.fixture(scope="module")
-def coefficients():
-    W = jnp.array([0.0, -0.5 * long_load(0.5) * D])
-    return W, vjax.journal_coefficients(R, C, ETA, W, [0.0, 80.0], omega_shaft=WJ, length=D, options=OPT)
-
-
-def test_coefficients_static_stiffness(coefficients):
+def test_coefficients_static_stiffness(tilted):
     """K (whirl-independent for the rigid film) is the inverse of d(journal position)/d(load
-    vector) by jax.jacfwd of the steady solution (the groove stays fixed in the bearing)."""
-    W, co = coefficients
+    vector) by jax.jacfwd of the steady solution (the groove stays fixed in the bearing); the
+    tilted bearing of the gradient test."""
+    _, J, co = tilted
     assert np.allclose(np.asarray(co.stiffness[0]), np.asarray(co.stiffness[1]), rtol=1e-14)
-    position = lambda Wv: journal_bearing(R, C, ETA, Wv, omega_shaft=WJ, length=D, options=OPT,
-                                          initial=co.steady).position
-    K = np.linalg.inv(np.asarray(jax.jacfwd(position)(W)))
+    K = np.linalg.inv(J[4:, 2:])
     assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
     # a rigid film's damping is symmetric
     Cd = np.asarray(co.damping[0])
     assert abs(Cd[0, 1] - Cd[1, 0]) < 1e-9 * np.abs(Cd).max()
 
 
-def test_coefficients_against_nonlinear_solves(coefficients):
+def test_coefficients_against_nonlinear_solves(tilted):
     """Central differences of the nonlinear film force with the journal held at perturbed
     positions and velocities (Newton on the cell equations, :func:`journal_finite.force_at`), 1e-3."""
-    W, co = coefficients
-    pr, cfg = journal_finite.setup(R, C, ETA, W, D, omega_shaft=WJ, options=OPT)
+    q, _, co = tilted
+    pr, cfg = journal_finite.setup(R, C, ETA, jnp.asarray(q[2:]), D, omega_shaft=WJ, tilt=GAMMA, options=OPT)
     frame = float(pr.frame)
     rot = np.array([[np.cos(frame), -np.sin(frame)], [np.sin(frame), np.cos(frame)]])
     x0 = jnp.concatenate([(co.steady.pressure[:, 1:-1] / pr.p_ref).ravel(),
@@ -333,10 +341,10 @@ def test_coefficients_tend_to_the_long_bearing():
     assert np.max(np.abs(2 * Cd[100.0] - Cd[50.0] - C0)) < 2e-3 * np.abs(C0).max()
 
 
-def test_coefficient_tables(coefficients, tmp_path):
+def test_coefficient_tables(tilted, tmp_path):
     """A finite bearing's table holds its own totals (another length is refused); the long
     bearing's length scaling warns that it is the infinitely long bearing's."""
-    _, co = coefficients
+    _, _, co = tilted
     cols = co.table()
     assert np.allclose(cols["kxy"], np.asarray(co.stiffness[:, 0, 1]), rtol=1e-15)
     data = np.genfromtxt(co.save_csv(tmp_path / "finite.csv", length=D), delimiter=",", names=True)
