@@ -288,13 +288,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     _checks.finite("whirl", whirl)
     if length is not None or tilt is not None or supply_width != 1.0:
         # the finite rigid bearing (vjax.journal_finite): K, C the bearing's totals, whirl-independent
-        if length is None:
-            raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
-        if housing is not None or shaft is not None or temperature is not None or shift is not None:
-            raise ValueError("housing, shaft (and temperature, shift): the finite bearing (length=) has rigid "
-                             "bodies only so far")
-        if groove not in (None, "fixed"):
-            raise ValueError(f"groove must be 'fixed' (in the bearing) with length=, got {groove!r}")
+        journal_finite.check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
         opts = journal_finite.FiniteJournalOptions() if options == JournalOptions() else options
         sol, K, C = journal_finite.finite_coefficients(
             R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft, omega_housing=omega_housing,

@@ -43,9 +43,13 @@ the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``po
 (W): the viscous dissipation in the film, = -omega_B torque - omega_J torque_shaft + p_s
 supply_flow (the power balance of the discrete equations, up to the discretization).
 
-Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected)
-with the dense AD Jacobian (LU), derivatives implicit (:func:`vjax._solve.implicit_root`);
-grids up to about 96 x 24 (N = n (m - 1) unknowns, O(N^3) per step). ``throw=True`` raises
+Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected),
+each step solved exactly and directly: the Jacobian in the pressures is block tridiagonal
+(a ring of n blocks of m - 1 cells, cyclic), bordered by the eccentricity's two columns and
+the two force rows (:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under
+Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solution.
+Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same block solve). Dynamic
+coefficients: :func:`stiffness_damping`. ``throw=True`` raises
 :class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
 """
 from __future__ import annotations
@@ -467,11 +471,9 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omeg
     return sol
 
 
-def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
-                           omega_housing, load_angle, memory, cavitation, supply_angle, supply_pressure,
-                           supply_width, groove, tilt, temperature, shift, initial, options, throw):
-    """:func:`vjax.journal_bearing`'s arguments -> :func:`finite_journal_bearing`, refusing
-    what the finite bearing does not have (yet): deformable bodies, JFO, a turning groove."""
+def check_supported(length, housing, shaft, temperature, shift, groove, cavitation):
+    """Refuse, naming the argument, what the finite bearing does not have (yet): deformable
+    bodies, JFO, a groove turning with the line of centres; and tilt without a length."""
     if length is None:
         raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
     if housing is not None or shaft is not None or temperature is not None or shift is not None:
@@ -482,6 +484,13 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
                          f"got {cavitation!r}")
+
+
+def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
+                           omega_housing, load_angle, memory, cavitation, supply_angle, supply_pressure,
+                           supply_width, groove, tilt, temperature, shift, initial, options, throw):
+    """:func:`vjax.journal_bearing`'s arguments -> :func:`finite_journal_bearing`."""
+    check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
     return finite_journal_bearing(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
                                   omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
                                   supply_angle=supply_angle, supply_pressure=supply_pressure,
