@@ -22,6 +22,7 @@ from ._solve import ConvergenceError
 from .contact import ContactOptions, ContactSolution, solve_contact
 from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .journal import JournalOptions, JournalResult, journal_bearing
+from .journal_finite import FiniteJournalOptions, FiniteJournalResult
 from .journal_dynamics import JournalCoefficients, journal_coefficients, stability_threshold
 from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from . import reference
@@ -31,7 +32,7 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "eff
            "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole", "liner", "sleeve",
            "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
-           "JournalOptions", "JournalResult", "journal_bearing", "JournalCoefficients", "journal_coefficients",
+           "JournalOptions", "JournalResult", "journal_bearing", "FiniteJournalOptions", "FiniteJournalResult", "JournalCoefficients", "journal_coefficients",
            "stability_threshold",
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
            "initialize_processes"]

@@ -114,7 +114,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _banded, _checks, _krylov, _scene, _solve, reference, reynolds
+from . import _banded, _checks, _krylov, _scene, _solve, journal_finite, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
@@ -592,9 +592,9 @@ def _run(pr: _Params, cfg: _Config):
 
 def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft=None, omega_shaft=0.0,
                     omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation: str = "reynolds",
-                    supply_angle=math.pi, supply_pressure=0.0, groove: str = "line_of_centres", temperature=None,
+                    supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
                     shift=None, initial: "JournalResult | None" = None, options: JournalOptions = JournalOptions(),
-                    throw: bool = True) -> JournalResult:
+                    throw: bool = True, length=None, tilt=None, supply_width=1.0) -> JournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
     See the module docstring for the equations, conventions and solver. Configurations of
@@ -617,19 +617,34 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       supply_angle: groove position (rad, default pi), from the line of centres or, with
         ``groove="fixed"``, from the load direction (pi: opposite the load).
       supply_pressure: groove gauge pressure (Pa, default 0).
-      groove: "line_of_centres" (the groove turns with it, the classical theory) or "fixed"
-        (in the bearing); see the module docstring.
+      groove: "line_of_centres" (the groove turns with it, the classical theory; the default
+        of the infinitely long bearing) or "fixed" (in the bearing, as in a real bearing; the
+        only groove of a finite one); see the module docstring.
       temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``.
       initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
       options: :class:`JournalOptions` (grid, tolerance, iteration caps, strategy; static).
       throw: raise :class:`~vjax.ConvergenceError` on failure (inside jit too); with False
         inspect ``converged`` and ``result``.
+      length: axial length L (m) of a finite bearing (None: infinitely long, per unit length).
+        With it the film covers the land (:mod:`vjax.journal_finite`): ``load`` is the total
+        (N), the groove is fixed in the bearing at ``supply_angle`` from the load (None: no
+        groove) over the central fraction ``supply_width`` of L, the journal may be tilted by
+        ``tilt`` (gamma_x, gamma_y) (rad), ``options`` is a :class:`~vjax.FiniteJournalOptions`,
+        the bodies rigid; returns a :class:`~vjax.FiniteJournalResult` (SI totals).
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> sol = journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=64))
     >>> bool(sol.converged), 0 < float(sol.eccentricity) < 1
     (True, True)
     """
+    if length is not None or tilt is not None or supply_width != 1.0:
+        return journal_finite.from_journal_arguments(
+            R, radial_clearance, viscosity, load, length=length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+            omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
+            supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, groove=groove,
+            tilt=tilt, temperature=temperature, shift=shift, initial=initial, throw=throw,
+            options=journal_finite.FiniteJournalOptions() if options == JournalOptions() else options)
+    groove = "line_of_centres" if groove is None else groove
     pr, cfg, housing, shaft = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
                                      load_angle, memory, cavitation, supply_angle, supply_pressure, temperature,
                                      shift, options, groove)

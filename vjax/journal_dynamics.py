@@ -55,13 +55,14 @@ import io
 import math
 import os
 import tempfile
+import warnings
 from functools import partial
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _solve, reynolds
+from . import _checks, _solve, journal_finite, reynolds
 from .journal import JournalOptions, JournalResult, _Config, _equations, _newton, _offset, _Params, _setup, journal_bearing
 from .operator import grid
 
@@ -71,13 +72,17 @@ __all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
 @jax.tree_util.register_dataclass
 @dataclasses.dataclass(frozen=True, repr=False)
 class JournalCoefficients:
-    """Dynamic coefficients of :func:`journal_coefficients` (SI, per unit axial length).
+    """Dynamic coefficients of :func:`journal_coefficients` (SI, per unit axial length of the
+    infinitely long bearing; totals of a finite bearing).
 
     ``whirl`` Omega (rad/s, shape (m,)); ``impedance`` Z (complex, (m, 2, 2), N/m^2);
     ``stiffness`` K = Re Z (N/m^2); ``damping`` C = Im Z / Omega (N s/m^2; at Omega = 0 its
     limit), all in the absolute x, y frame (``[..., i, j]``: force component i per motion
     component j); ``speed`` the journal's angular velocity (rad/s); ``steady`` the
     :class:`~vjax.JournalResult` they linearize about. Convention: dF = -(K dx + C dx/dt).
+    ``length``: None for the infinitely long bearing (per unit length); the axial length (m)
+    of a finite bearing (``journal_coefficients(..., length=L)``), whose Z, K (N/m) and C
+    (N s/m) are the bearing's totals and ``steady`` a :class:`~vjax.FiniteJournalResult`.
     """
 
     whirl: jax.Array
@@ -86,6 +91,7 @@ class JournalCoefficients:
     damping: jax.Array
     speed: jax.Array
     steady: JournalResult
+    length: jax.Array | None = None
 
     def __repr__(self):
         return f"JournalCoefficients({self.whirl.shape[0]} whirl frequencies, eps = {float(self.steady.eccentricity):.4g})"
@@ -98,13 +104,31 @@ class JournalCoefficients:
         turn = lambda A: rot.T @ A @ rot  # noqa: E731
         return jax.vmap(turn)(self.stiffness), jax.vmap(turn)(self.damping)
 
-    def table(self, length=1.0) -> dict:
-        """Columns for a rotordynamics code, for a bearing of axial ``length`` (m; the
-        infinitely-long coefficients times the length): ``speed`` (rad/s), ``frequency`` (the
-        whirl, rad/s), ``kxx, kxy, kyx, kyy`` (N/m), ``cxx, cxy, cyx, cyy`` (N s/m) - the names
-        of ROSS's bearing tables (``ross.BearingElement``)."""
-        _checks.positive("length", length)
-        K, C = np.asarray(self.stiffness) * length, np.asarray(self.damping) * length
+    def table(self, length=None) -> dict:
+        """Columns for a rotordynamics code: ``speed`` (rad/s), ``frequency`` (the whirl, rad/s),
+        ``kxx, kxy, kyx, kyy`` (N/m), ``cxx, cxy, cyx, cyy`` (N s/m) - the names of ROSS's
+        bearing tables (``ross.BearingElement``).
+
+        A finite bearing's coefficients (computed with ``length=``) are written as they are
+        (``length`` None or equal to theirs). The infinitely long bearing's are scaled by
+        ``length`` (m, default 1): **the infinitely long bearing's coefficients times the
+        length, not a finite bearing's.** Side leakage makes a real bearing's differ by
+        factors (issue 27: K_yy 2.4-4x, C_xx 1.5-2x at L/D = 1); this warns so. For a real
+        bearing compute them with ``journal_coefficients(..., length=L)``."""
+        if self.length is not None:
+            if length is not None and not np.isclose(float(length), float(self.length), rtol=1e-12, atol=0.0):
+                raise ValueError(f"length={length!r}: these are the coefficients of a finite bearing of length "
+                                 f"{float(self.length)!r} m; compute them again for another length")
+            scale = 1.0
+        else:
+            length = 1.0 if length is None else length
+            _checks.positive("length", length)
+            warnings.warn("JournalCoefficients.table/save_csv: the infinitely long bearing's coefficients times the "
+                          f"length ({float(length)!r} m), not those of a finite bearing (side leakage ignored: "
+                          "stiffness and damping off by factors at L/D ~ 1); use journal_coefficients(..., length=L)",
+                          UserWarning, stacklevel=3)
+            scale = length
+        K, C = np.asarray(self.stiffness) * scale, np.asarray(self.damping) * scale
         cols = {"speed": np.full(K.shape[0], float(self.speed)), "frequency": np.asarray(self.whirl)}
         for name, A in (("k", K), ("c", C)):
             for i, a in enumerate("xy"):
@@ -112,9 +136,10 @@ class JournalCoefficients:
                     cols[f"{name}{a}{b}"] = A[:, i, j]
         return cols
 
-    def save_csv(self, path, length=1.0) -> str:
+    def save_csv(self, path, length=None) -> str:
         """Write :meth:`table` as CSV (one header line of column names; SI units as in
-        :meth:`table`), atomically: a temporary file in the target directory, then ``os.replace``."""
+        :meth:`table`, whose warning about the infinitely long bearing's ``length`` scaling
+        applies), atomically: a temporary file in the target directory, then ``os.replace``."""
         cols = self.table(length)
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
@@ -253,16 +278,21 @@ def _linearized(x0, pr: _Params, bodies, whirl, cfg: _Config):
 
 def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None,
                          omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, cavitation: str = "reynolds",
-                         supply_angle=math.pi, supply_pressure=0.0, groove: str = "line_of_centres", temperature=None,
+                         supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
                          shift=None,
                          initial: JournalResult | None = None, options: JournalOptions = JournalOptions(),
-                         throw: bool = True) -> JournalCoefficients:
+                         throw: bool = True, length=None, tilt=None, supply_width=1.0) -> JournalCoefficients:
     """Stiffness and damping of a (visco)elastic journal bearing at whirl frequencies ``whirl``.
 
     The arguments are those of :func:`vjax.journal_bearing` (which solves the steady state,
     with the periodic-memory bodies) plus ``whirl`` (rad/s, a scalar or 1-D array; negative
     for backward whirl). Returns :class:`JournalCoefficients` (module docstring for the frame
     and the sign convention). Differentiable in the bearing's parameters.
+
+    With ``length=L`` (m; and optionally ``tilt``, ``supply_width``): the finite rigid bearing
+    of :mod:`vjax.journal_finite`, its groove fixed in the bearing; K (N/m) and C (N s/m) are
+    the bearing's totals, the 2D film linearized in the journal's position and velocity
+    (:func:`vjax.journal_finite.stiffness_damping`), independent of the whirl frequency.
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> co = journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 100.0], omega_shaft=100.0,
@@ -274,6 +304,19 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     if whirl.ndim != 1:
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {whirl.shape}")
     _checks.finite("whirl", whirl)
+    if length is not None or tilt is not None or supply_width != 1.0:
+        # the finite rigid bearing (vjax.journal_finite): K, C the bearing's totals, whirl-independent
+        journal_finite.check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
+        opts = journal_finite.FiniteJournalOptions() if options == JournalOptions() else options
+        sol, K, C = journal_finite.finite_coefficients(
+            R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft, omega_housing=omega_housing,
+            load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
+            supply_width=supply_width, tilt=tilt, initial=initial, options=opts, throw=throw)
+        Z = K[None] + 1j * whirl[:, None, None] * C[None]
+        return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=jnp.broadcast_to(K, Z.shape),
+                                   damping=jnp.broadcast_to(C, Z.shape), speed=jnp.asarray(omega_shaft, whirl.dtype),
+                                   steady=sol, length=jnp.asarray(length, whirl.dtype))
+    groove = "line_of_centres" if groove is None else groove
     sol = journal_bearing(R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
                           omega_housing=omega_housing, load_angle=load_angle, memory="periodic",
                           cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
@@ -306,9 +349,12 @@ def stability_threshold(coefficients: JournalCoefficients, length=1.0) -> dict:
     ``coefficients`` (linear interpolation of the coefficients; None if no sign change).
 
     Returns dict ``whirl`` W (rad/s), ``whirl_ratio`` W / omega_journal, ``critical_mass``
-    M_crit (kg per bearing of axial ``length`` m), ``stiffness`` K_eq (N/m for that length);
+    M_crit (kg per bearing of axial ``length`` m; ignored for a finite bearing's coefficients,
+    which are its totals), ``stiffness`` K_eq (N/m for that length);
     a mass below M_crit runs stable. None values when no threshold exists (stable at any mass).
     """
+    if coefficients.length is not None:      # a finite bearing's totals
+        length = 1.0
     _checks.positive("length", length)
     K = np.asarray(coefficients.stiffness) * length
     C = np.asarray(coefficients.damping) * length

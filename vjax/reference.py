@@ -20,6 +20,8 @@ re-coding them. SI units, plane strain, per unit axial length; jax.numpy through
   ratio; :func:`half_sommerfeld_eccentricity` inverts the half-Sommerfeld load;
   :func:`long_bearing_coefficients` gives its stiffness and damping for the full-Sommerfeld
   film and the pi film (derived in docs/theory.md, journal dynamics).
+- Short rigid journal bearing (Ocvirk 1952; Hamrock, Schmid & Jacobson 2004, ch. 10):
+  :func:`short_bearing`, the limit L/D -> 0 of the finite bearing (totals for a length L).
 """
 from __future__ import annotations
 
@@ -34,7 +36,8 @@ from ._solve import bisect
 
 __all__ = ["hertz_line_contact", "lame_displacement", "winkler_pin", "oedometric_stiffness", "persson_shape_functions", "persson_coefficients",
            "persson_pressure", "persson_load_parameter", "persson_b_from_load", "persson_limit_b",
-           "long_bearing", "half_sommerfeld_load", "half_sommerfeld_eccentricity", "long_bearing_coefficients"]
+           "long_bearing", "half_sommerfeld_load", "half_sommerfeld_eccentricity", "long_bearing_coefficients",
+           "short_bearing"]
 
 
 # ------------------------------------------------------------------------------ Hertz
@@ -325,3 +328,39 @@ def long_bearing_coefficients(eps, R, radial_clearance, viscosity, speed, condit
     K = jnp.array([[-D[0, 0] / c, F[1] / (eps * c)], [-D[1, 0] / c, -F[0] / (eps * c)]])
     C = jnp.array([[-D[0, 1] / c, 2 * D[0, 2] / (eps * c)], [-D[1, 1] / c, 2 * D[1, 2] / (eps * c)]])
     return K, C
+
+
+# ------------------------------------------------------------------------------ short journal bearing
+def short_bearing(eps, R, radial_clearance, viscosity, speed, length, conditions: str = "half_sommerfeld"):
+    """Rigid short journal bearing (Ocvirk's solution: the circumferential pressure flow dropped
+    against the axial one, the limit L/D -> 0), eccentricity ratio ``eps``, entrainment speed
+    ``speed`` v = (omega_B R_B + omega_J R_J)/2 > 0 (m/s), axial ``length`` L (m), ambient
+    pressure at z = +-L/2. With U = 2 v and theta from the line of centres (0 at the smallest gap):
+
+        p(theta, z) = (3 eta U / (R c^2)) (L^2/4 - z^2) (-eps sin theta) / (1 - eps cos theta)^3
+
+    "half_sommerfeld": the positive half (-pi < theta < 0); the force on the journal, along the
+    line of centres and 90 degrees ahead of it (N, totals over L),
+    W_r = eta U L^3 eps^2 / (c^2 (1 - eps^2)^2), W_t = pi eta U L^3 eps / (4 c^2 (1 - eps^2)^(3/2)),
+    tan(attitude) = pi sqrt(1 - eps^2) / (4 eps);
+    "sommerfeld": the whole antisymmetric film, W_r = 0, W_t twice the above, attitude pi/2.
+    Returns a dict ``load`` |W| (N), ``attitude`` (rad), ``pressure(theta, z)`` (Pa).
+    """
+    _checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
+    _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed, length=length)
+    e = _checks.values("eps", eps)
+    if e is not None and not (0 < e < 1):
+        raise ValueError(f"eps must be in (0, 1), got {eps!r}")
+    c, L, U = radial_clearance, length, 2 * speed
+    scale = viscosity * U * L**3 / c**2
+    Wt = scale * jnp.pi * eps / (4 * (1 - eps**2) ** 1.5)
+    Wr = scale * eps**2 / (1 - eps**2) ** 2
+
+    def full(theta, z):
+        theta = jnp.asarray(theta)
+        return (3 * viscosity * U / (R * c**2) * (L**2 / 4 - jnp.asarray(z) ** 2) * (-eps * jnp.sin(theta))
+                / (1 - eps * jnp.cos(theta)) ** 3)
+    if conditions == "sommerfeld":
+        return dict(load=2 * Wt, attitude=jnp.pi / 2, pressure=full)
+    return dict(load=jnp.hypot(Wr, Wt), attitude=jnp.arctan2(Wt, Wr),
+                pressure=lambda theta, z: jnp.maximum(full(theta, z), 0.0))

@@ -1,0 +1,108 @@
+"""Finite-length rigid journal bearing (issue 27): the heavier checks the tests keep small.
+
+Run::
+
+    PYTHONPATH=. python -m experiments.journal_finite [out_dir] [--quick]
+
+Writes ``journal_finite.txt`` (and prints it): Raimondi and Boyd's table (L/D = 1, 0.5,
+Reynolds conditions) on two grids; Ocvirk's short bearing (load ratio at L/D = 0.05, 0.1,
+0.2 on two axial grids); the long-bearing limit (eccentricity against D/L and its
+extrapolation); warm time and Newton steps of one rigid point for grids from 32 x 8 to
+128 x 32 (compile apart; the machine's load average next to them). Case: R = 50 mm,
+c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
+"""
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+from experiments import _common
+
+R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
+V = 0.5 * WJ * (R - C)
+D = 2 * R
+N_REV = WJ / (2 * 3.141592653589793)
+# Raimondi and Boyd (ASLE Trans. 1, 1958), full bearing, Reynolds conditions, as reproduced in
+# Shigley's Mechanical Engineering Design (ch. 12): eps, S, attitude (deg), (r/c) f,
+# Q/(r c N L), Qs/Q, P/p_max.
+RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.264, 63.10, 5.79, 3.99, 0.497, 0.484),
+                       (0.6, 0.121, 50.58, 3.22, 4.33, 0.680, 0.415), (0.8, 0.0446, 36.24, 1.70, 4.62, 0.842, 0.313)],
+                 0.5: [(0.2, 2.03, 74.94, 40.9, 3.72, 0.318, 0.506), (0.4, 0.779, 61.45, 17.0, 4.29, 0.552, 0.441),
+                       (0.6, 0.319, 48.14, 8.10, 4.85, 0.730, 0.365), (0.8, 0.0923, 33.31, 3.26, 5.41, 0.874, 0.267)]}
+
+
+def main(out_dir="experiments/out", quick=False):
+    out = _common.setup(out_dir)
+    import numpy as np
+    import vjax
+    from vjax import FiniteJournalOptions, JournalOptions, reference
+
+    lines = [f"# finite journal bearing (issue 27); {_common.device_note()}", ""]
+    grids = [(48, 16)] if quick else [(48, 16), (96, 32)]
+    lines.append("Raimondi-Boyd (computed / table): eps, attitude deg, (r/c)f, Q/(rcNL), Qs/Q, P/pmax")
+    for n, m in grids:
+        opt = FiniteJournalOptions(n=n, m=m, max_iter=200)
+        for LD, rows in RAIMONDI_BOYD.items():
+            L = LD * D
+            for eps, S, phi, fv, qv, qs, pm in rows:
+                W = (R / C) ** 2 * ETA * N_REV * 2 * R * L / S
+                s = vjax.journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=L, supply_angle=np.pi + np.radians(phi),
+                                         options=opt, throw=False)
+                Q = float(s.inlet_flow)
+                got = (float(s.eccentricity), np.degrees(float(s.attitude_angle)), abs(float(s.torque_shaft)) / (W * C),
+                       Q / (R * C * N_REV * L), float(s.side_leakage) / Q, W / (2 * R * L) / float(s.max_pressure))
+                ref = (eps, phi, fv, qv, qs, pm)
+                lines.append(f"{n}x{m} L/D {LD}: " + "  ".join(f"{g:.4g}/{r:.4g}" for g, r in zip(got, ref))
+                             + ("" if bool(s.converged) else f"  NOT CONVERGED ({int(s.iterations)} steps)"))
+    lines += ["", "Ocvirk: load ratio W_ocvirk(eps)/W (Reynolds; half-Sommerfeld)"]
+    for m in ([16] if quick else [16, 32, 64]):
+        opt = FiniteJournalOptions(n=48, m=m)
+        for LD in (0.05, 0.1, 0.2):
+            L = LD * D
+            W = float(reference.short_bearing(0.5, R, C, ETA, V, L)["load"])
+            ratio = []
+            for cav in ("reynolds", "half_sommerfeld"):
+                s = vjax.journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=L, supply_angle=None, cavitation=cav,
+                                         options=opt)
+                ratio.append(float(reference.short_bearing(float(s.eccentricity), R, C, ETA, V, L)["load"]) / W)
+            lines.append(f"48x{m} L/D {LD}: {ratio[0]:.5f}; {ratio[1]:.5f}")
+    lines += ["", "Long-bearing limit (Reynolds, groove fixed opposite the load, n = 48, m = 32 cosine): "
+              "eps / eps_long - 1"]
+    W1 = float(reference.long_bearing(0.6, R, C, ETA, V, "reynolds")["load"])
+    e0 = float(vjax.journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed",
+                                    options=JournalOptions(n=48)).eccentricity)
+    opt = FiniteJournalOptions(n=48, m=32, spacing="cosine")
+    eps = {}
+    for LD in (12.5, 25.0, 50.0, 100.0):
+        eps[LD] = float(vjax.journal_bearing(R, C, ETA, W1 * LD * D, omega_shaft=WJ, length=LD * D,
+                                             options=opt).eccentricity)
+        lines.append(f"L/D {LD}: {eps[LD] / e0 - 1:.4e}")
+    lines.append(f"extrapolated from 50 and 100: {(2 * eps[100.0] - eps[50.0]) / e0 - 1:.2e}")
+    lines += ["", f"Warm time per rigid point (L/D = 1, Reynolds), load average {os.getloadavg()[0]:.1f}:"]
+    W = 0.5 * float(reference.long_bearing(0.5, R, C, ETA, V, "reynolds")["load"]) * D
+    for n, m in ([(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]):
+        opt = FiniteJournalOptions(n=n, m=m)
+        run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, options=opt)  # noqa: E731
+        t = time.perf_counter()
+        s = run(W)
+        first = time.perf_counter() - t
+        times = []
+        for k in range(3):
+            t = time.perf_counter()
+            s = run(W * (1 + 0.01 * (k + 1)))
+            s.eccentricity.block_until_ready()
+            times.append(time.perf_counter() - t)
+        its = int(s.iterations)
+        med = float(np.median(times))
+        lines.append(f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
+                     f"{med / its * 1e3:.1f} ms per step")
+    text = "\n".join(lines)
+    print(text)
+    _common.atomic_write_text(out / "journal_finite.txt", text + "\n")
+    return text
+
+
+if __name__ == "__main__":
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    main(*(args[:1] or ["experiments/out"]), quick="--quick" in sys.argv)

@@ -1,0 +1,137 @@
+"""Reynolds equation of a finite film over the bearing's land: finite volumes on theta x z (internal).
+
+    d/dx (h^3/(12 eta) dp/dx) + d/dz (h^3/(12 eta) dp/dz) = v dh/dx + dh/dt      (docs/theory.md §16)
+
+x = R theta in [0, 2 pi R) (periodic), z in [-L/2, L/2], v the entrainment speed (the mean of
+the surface speeds), p = ambient (0, gauge) at both ends z = +-L/2. Grid: n cells in theta
+(centres theta_i = 2 pi i / n, as the ring) times m + 1 axial nodes z_0 = -L/2 < ... < z_m =
+L/2 (vertex-centred in z, so the end pressure is held exactly on the end nodes); the unknowns
+live on the n x (m - 1) interior nodes, each the centre of a control volume R dtheta by
+dz_j = (z_{j+1} - z_{j-1})/2. Fluxes through the faces (second order, the face film the mean
+of its two nodes, as in the ring's :mod:`vjax.reynolds`):
+
+    q_x = -h_f^3/(12 eta) dp/dx + v h_f   (m^2/s per unit width, theta faces)
+    q_z = -h_f^3/(12 eta) dp/dz           (m^2/s per unit arc, z faces)
+
+and the net outflow of a cell, w = (q_x+ - q_x-) dz_j + (q_z+ - q_z-) R dtheta (m^3/s), plus
+the squeeze term R dtheta dz_j dh/dt, is its mass balance. Each balance is divided by the sum
+of its four face conductances times p_ref: the equation then reads "p minus the weighted
+mean of its neighbours minus a source" in units of p_ref, O(1) and with a round-off floor of
+a few machine epsilons whatever the cells' aspect ratio. Cavitation as in 1D
+(:mod:`vjax.reynolds`): "reynolds" (Fischer-Burmeister complementarity of p and w),
+"half_sommerfeld" (the Sommerfeld field, negative part clipped when it loads the surfaces),
+"sommerfeld". Cells of a supply groove hold the supply pressure instead of a balance.
+
+Film of a journal tilted in the bearing (grid axes: theta from the grid's x axis):
+
+    h(theta, z) = c - (e_x + z gamma_x) cos theta - (e_y + z gamma_y) sin theta + deformations
+"""
+from __future__ import annotations
+
+import jax.numpy as jnp
+import numpy as np
+
+from . import reynolds
+
+SPACINGS = ("uniform", "cosine")
+
+
+def unit_nodes(m: int, spacing: str = "uniform"):
+    """Axial nodes over L/2 (m + 1,), -1 ... 1 (numpy: static grid data): uniform, or "cosine"
+    (Chebyshev-Lobatto, -cos(pi j / m)): nodes clustered at the ends, where a long bearing's
+    pressure falls to ambient over a distance of about R while it is flat over the rest."""
+    j = np.arange(m + 1)
+    s = -np.cos(np.pi * j / m) if spacing == "cosine" else 2.0 * j / m - 1.0
+    return 0.5 * (s - s[::-1])       # exact ends and mirror symmetry (the cosine's round-off)
+
+
+def axial_nodes(m: int, length, spacing: str = "uniform"):
+    """z nodes (m + 1,) from -L/2 to L/2 (m): :func:`unit_nodes` times L/2."""
+    return 0.5 * length * unit_nodes(m, spacing)
+
+
+def node_widths(z):
+    """Axial widths of the nodes' control volumes (m + 1,) (m): (z_{j+1} - z_{j-1})/2 inside,
+    half a spacing at the ends (the trapezoidal weights)."""
+    d = jnp.diff(z)
+    return 0.5 * (jnp.concatenate([d[:1] * 0, d]) + jnp.concatenate([d, d[:1] * 0]))
+
+
+def film(theta, z, c, eccentricity, tilt):
+    """Rigid film h (n, m + 1) (m) of a journal whose centre at axial position z sits at
+    ``eccentricity`` + z ``tilt`` (m, rad; grid axes) in the bore."""
+    ex = eccentricity[0] + z[None, :] * tilt[0]
+    ey = eccentricity[1] + z[None, :] * tilt[1]
+    return c - ex * jnp.cos(theta)[:, None] - ey * jnp.sin(theta)[:, None]
+
+
+def with_ends(p_interior):
+    """Pressure on all nodes (n, m + 1): ambient (0) on the end nodes."""
+    zero = jnp.zeros_like(p_interior[:, :1])
+    return jnp.concatenate([zero, p_interior, zero], axis=1)
+
+
+def fluxes(p, h, R, z, eta, v):
+    """Face films, gradients and fluxes of pressure ``p`` and film ``h`` on all nodes (n, m + 1):
+    theta faces (i + 1/2, j): ``hx``, ``dpdx`` (Pa/m), ``qx`` (m^2/s per unit width);
+    z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per unit arc)."""
+    dth = 2 * jnp.pi / p.shape[0]
+    hx = 0.5 * (h + jnp.roll(h, -1, axis=0))
+    dpdx = (jnp.roll(p, -1, axis=0) - p) / (R * dth)
+    hz = 0.5 * (h[:, 1:] + h[:, :-1])
+    dpdz = jnp.diff(p, axis=1) / jnp.diff(z)[None, :]
+    return dict(hx=hx, dpdx=dpdx, qx=-hx**3 * dpdx / (12 * eta) + v * hx,
+                hz=hz, dpdz=dpdz, qz=-hz**3 * dpdz / (12 * eta))
+
+
+def net_outflow(f, R, z):
+    """Net outflow (m^3/s) of each interior cell (n, m - 1) from the fluxes ``f`` of :func:`fluxes`."""
+    dth = 2 * jnp.pi / f["qx"].shape[0]
+    dz = node_widths(z)[1:-1]
+    qx = f["qx"][:, 1:-1]
+    return (qx - jnp.roll(qx, 1, axis=0)) * dz[None, :] + jnp.diff(f["qz"], axis=1) * R * dth
+
+
+def conductance(f, R, z, eta):
+    """Sum of the four face conductances of each interior cell (n, m - 1) (m^3/(Pa s)): the
+    diagonal of the pressure operator, the scale of its balance."""
+    dth = 2 * jnp.pi / f["hx"].shape[0]
+    dz = node_widths(z)[1:-1]
+    hx3 = f["hx"][:, 1:-1] ** 3
+    gx = (hx3 + jnp.roll(hx3, 1, axis=0)) * dz[None, :] / (R * dth)
+    gz = f["hz"] ** 3 * R * dth / jnp.diff(z)[None, :]
+    return (gx + gz[:, 1:] + gz[:, :-1]) / (12 * eta)
+
+
+def cell_equations(p_scaled, outflow, scale, cavitation, groove, supply):
+    """Scaled cell equations (n, m - 1): the balance w / ``scale`` (``scale`` = conductance
+    times p_ref, m^3/s) or, under Reynolds conditions, its Fischer-Burmeister complementarity
+    with the scaled pressure; ``groove`` cells (a 0/1 mask) hold the scaled ``supply`` pressure."""
+    w = outflow / scale
+    r = reynolds.fischer_burmeister(p_scaled, w) if cavitation == "reynolds" else w
+    return jnp.where(groove > 0, p_scaled - supply, r)
+
+
+def resultants(p_load, theta, z, R):
+    """Force (N, grid axes) and moment about the bearing's centre plane (N m, grid axes) of the
+    pressure ``p_load`` (Pa, on all nodes) on the journal: F = -int p e_r R dtheta dz,
+    M = int z e_z x dF = (-int z dF_y, int z dF_x) (the radial force has no moment about the axis)."""
+    dth = 2 * jnp.pi / p_load.shape[0]
+    wz = node_widths(z)
+    per_z = -R * dth * jnp.stack([jnp.cos(theta) @ p_load, jnp.sin(theta) @ p_load])   # (2, m + 1) N/m
+    F = per_z @ wz
+    M = jnp.stack([-(per_z[1] * z) @ wz, (per_z[0] * z) @ wz])
+    return F, M
+
+
+def end_outflow(p, h, z, R, eta):
+    """Flow out of the land through both end planes (m^3/s): -h^3/(12 eta) dp/dz at z = +-L/2
+    outward, the gradient from the quadratic through the end node and its two neighbours
+    (second order on any spacing; a flux at the last face would be first order)."""
+    dth = 2 * jnp.pi / p.shape[0]
+
+    def upper(p, h, z):
+        d1, d2 = z[-1] - z[-2], z[-1] - z[-3]
+        dpdz = p[:, -1] * (1 / d1 + 1 / d2) - p[:, -2] * d2 / (d1 * (d2 - d1)) + p[:, -3] * d1 / (d2 * (d2 - d1))
+        return -jnp.sum(h[:, -1] ** 3 * dpdz) * R * dth / (12 * eta)
+    return upper(p, h, z) + upper(p[:, ::-1], h[:, ::-1], -z[::-1])

@@ -1,0 +1,565 @@
+"""Finite-length rigid journal bearing: the film over the bearing's width (issue 27).
+
+Called by :func:`vjax.journal_bearing` with ``length=L``; docs/theory.md §16.
+
+Geometry and frames
+-------------------
+Bore of radius R (centre O), journal of radius R - c, land z in [-L/2, L/2] with ambient
+pressure at both ends. The grid theta_i = 2 pi i / n is fixed in the bearing: theta = 0
+points along the load (its direction when the bearing is set up, so that derivatives with
+respect to the load vector do not turn the bearing). An axial supply groove at
+``supply_angle`` (rad from the load, counter-clockwise; default pi, opposite the load) holds
+``supply_pressure`` over the central fraction ``supply_width`` of the land (1: the whole
+width); ``supply_angle=None``: no groove, the ends alone set the datum. The journal centre
+at axial position z sits at e + z gamma from the bore's axis: e the eccentricity vector
+(unknown), gamma = ``tilt`` (rad, absolute x, y components: the journal's axis turned about
+y by gamma_x and about -x by gamma_y, small angles), so that
+
+    h(theta, z) = c - (e_x + z gamma_x) cos theta - (e_y + z gamma_y) sin theta
+
+(grid axes). Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default),
+"half_sommerfeld", "sommerfeld".
+
+Load control: the pressure force of the film on the journal balances ``load`` (N, the
+external force on the journal, total for the bearing); the unknowns are the scaled pressures
+and the eccentricity vector e/c (grid axes). With a tilt the film also exerts a moment on the
+journal (``moment``, about the centre plane z = 0), which the shaft must carry; the tilt is
+given, not solved for.
+
+Outputs (SI totals for the bearing)
+-----------------------------------
+``force`` on the housing (N, absolute; the load at equilibrium), ``moment`` of the film on the
+journal about the bore's centre point (N m, absolute x, y), ``position`` e (m, absolute),
+``eccentricity`` |e|/c, ``attitude_angle`` (from the load line to e, counter-clockwise),
+``line_of_centres_angle`` (absolute). ``min_film`` (m) and where: ``min_film_theta`` (grid
+angle, from the load) and ``min_film_z`` (m); ``max_pressure`` (Pa). Torques by the fluid
+(N m, counter-clockwise positive), shear tau_B = -h/2 dp/dx - eta (U_B - U_J)/h on the bore and
+tau_J = -h/2 dp/dx + eta (U_B - U_J)/h on the journal (U = omega R): ``torque`` on the housing
+about O, ``torque_shaft`` on the journal about its own centre, and their pressure-flow
+(Poiseuille) parts ``torque_poiseuille``, ``torque_poiseuille_shaft`` (the rest is Couette; the
+Reynolds cavity is taken as full of lubricant, as in Raimondi and Boyd). Flows (m^3/s):
+``side_leakage`` out of both ends, ``supply_flow`` the groove's net outflow, ``inlet_flow``
+the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``power_loss``
+(W): the viscous dissipation in the film, = -omega_B torque - omega_J torque_shaft + p_s
+supply_flow (the power balance of the discrete equations, up to the discretization).
+
+Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected),
+each step solved exactly and directly: the Jacobian in the pressures is block tridiagonal
+(a ring of n blocks of m - 1 cells, cyclic), bordered by the eccentricity's two columns and
+the two force rows (:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under
+Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solution.
+Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same block solve). Dynamic
+coefficients: :func:`stiffness_damping`. ``throw=True`` raises
+:class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from functools import partial
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _blocks, _checks, _film2d, _scene, _solve, reference, reynolds
+from .operator import grid
+
+CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+
+
+@dataclasses.dataclass(frozen=True)
+class FiniteJournalOptions:
+    """Static options of the finite bearing (``journal_bearing(..., length=L)``): ``n`` cells in
+    theta (even, >= 8), ``m`` axial intervals (even, >= 2: m + 1 nodes, the end ones at ambient
+    pressure), axial ``spacing`` "uniform" or "cosine" (nodes clustered at the ends, for long
+    bearings whose pressure drops to ambient within about R of the ends), Newton tolerance
+    ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32) and
+    ``max_iter`` Newton steps."""
+
+    n: int = 64
+    m: int = 16
+    spacing: str = "uniform"
+    tol: float | None = None
+    max_iter: int = 60
+
+    def __post_init__(self):
+        _checks.option_count("n", self.n, 8)
+        _checks.option_count("m", self.m, 2)
+        if self.n % 2 or self.m % 2:
+            raise ValueError(f"n and m must be even, got n={self.n}, m={self.m}")
+        _checks.one_of("spacing", self.spacing, _film2d.SPACINGS)
+        if self.tol is not None:
+            _checks.option_number("tol", self.tol)
+        _checks.option_count("max_iter", self.max_iter)
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True, repr=False)
+class FiniteJournalResult(_scene.SceneResult):
+    """Solution of ``journal_bearing(..., length=L)`` (SI totals for the bearing; see
+    :mod:`vjax.journal_finite`). Arrays on the grid: ``theta`` (n,) from the load direction
+    (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
+    ``displacement`` (n, m + 1) (zero: rigid bodies). Convergence: ``iterations``,
+    ``residual``, ``result``; ``converged`` is ``result == 0``."""
+
+    theta: jax.Array
+    z: jax.Array
+    pressure: jax.Array
+    film: jax.Array
+    displacement: jax.Array
+    force: jax.Array
+    moment: jax.Array
+    position: jax.Array
+    eccentricity: jax.Array
+    attitude_angle: jax.Array
+    line_of_centres_angle: jax.Array
+    min_film: jax.Array
+    min_film_theta: jax.Array
+    min_film_z: jax.Array
+    max_pressure: jax.Array
+    torque: jax.Array
+    torque_shaft: jax.Array
+    torque_poiseuille: jax.Array
+    torque_poiseuille_shaft: jax.Array
+    side_leakage: jax.Array
+    supply_flow: jax.Array
+    inlet_flow: jax.Array
+    power_loss: jax.Array
+    iterations: jax.Array
+    residual: jax.Array
+    result: jax.Array
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Differentiable parameters of the finite bearing (SI; grid axes: x along ``frame``)."""
+
+    R: jax.Array
+    RJ: jax.Array
+    c: jax.Array
+    L: jax.Array
+    eta: jax.Array
+    v: jax.Array                 # entrainment speed (m/s)
+    W: jax.Array                 # load magnitude (N)
+    load: jax.Array              # (2,) load on the journal, grid axes (N)
+    frame: jax.Array             # absolute angle of the grid's x axis (the load's at setup; not differentiated)
+    tilt: jax.Array              # (2,) grid axes (rad)
+    ps: jax.Array                # groove pressure (Pa)
+    omega_B: jax.Array
+    omega_J: jax.Array
+    p_ref: jax.Array             # W / (2 R L)
+    groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
+    s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
+    x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
+
+
+@dataclasses.dataclass(frozen=True)
+class Config:
+    """Static configuration: cavitation model, grid size, Newton's tolerance and step cap (the
+    axial spacing is a parameter, ``Params.s``: uniform and cosine grids share one compile)."""
+
+    cavitation: str
+    n: int
+    m: int
+    tol: float
+    max_iter: int
+
+
+def _unknowns(cfg: Config):
+    return cfg.n * (cfg.m - 1)
+
+
+def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False):
+    """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
+    e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
+    position and gives the film's rate dh/dt (the dynamic coefficients). ``relaxed`` (traced
+    bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback)."""
+    n, m = cfg.n, cfg.m
+    N = _unknowns(cfg)
+    theta, _ = grid(n)
+    z = 0.5 * pr.L * pr.s
+    pz = x[:N].reshape(n, m - 1)
+    p = _film2d.with_ends(pz * pr.p_ref)
+    e = pr.c * x[N:N + 2]
+    hdot = jnp.zeros((n, m + 1), x.dtype)
+    if motion is not None:
+        e = e + motion[:2]
+        hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
+    h = _film2d.film(theta, z, pr.c, e, pr.tilt)
+    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load)
+
+
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False):
+    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes)."""
+    f = fields(x, pr, cfg, motion, relaxed)
+    out = _film2d.net_outflow(f, pr.R, f["z"])
+    dth = 2 * jnp.pi / cfg.n
+    out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
+    scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
+    r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        sommerfeld = _film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+        r = jnp.where(relaxed, sommerfeld, r)
+    F, _ = _film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
+    return r.ravel(), F, jnp.min(f["h"])
+
+
+def equations(x, pr: Params, cfg: Config, relaxed=False):
+    """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
+    r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed)
+    return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
+
+
+def _guess(pr: Params, cfg: Config):
+    """Rigid estimate of the unknowns: the eccentricity whose load, the short (Ocvirk) and the
+    long half-Sommerfeld capacities combined in series (1/W = 1/W_short + 1/W_long), equals
+    the load, at their correspondingly weighted attitude angle; the long bearing's pressure
+    along theta times a parabola across the width, scaled to carry the load."""
+    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
+
+    def capacities(eps):
+        Ws = eta * 2 * v * L**3 / c**2 * eps * jnp.sqrt(16 * eps**2 + jnp.pi**2 * (1 - eps**2)) / (
+            4 * (1 - eps**2) ** 2)
+        Wl = 12 * eta * v * R**2 * L / c**2 * reference.half_sommerfeld_load(eps)
+        return Ws, Wl
+
+    def combined(eps):
+        Ws, Wl = capacities(eps)
+        return Ws * Wl / (Ws + Wl)
+
+    eps = _solve.bisect(lambda e: combined(e) - pr.W, jnp.asarray(1e-6, c.dtype), jnp.asarray(0.999, c.dtype), 50)
+    eps = jnp.minimum(eps, 0.95)
+    Ws, Wl = capacities(eps)
+    short = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 4 * eps)
+    long = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
+    phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
+    # the load direction in the grid, and the journal at phi ahead of it (behind for v < 0)
+    a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
+    n, m = cfg.n, cfg.m
+    theta, _ = grid(n)
+    z = 0.5 * L * pr.s[1:-1]
+    t = theta - a
+    p = (-12 * eta * pr.v * R * eps * jnp.sin(t) * (2 - eps * jnp.cos(t))
+         / (c**2 * (2 + eps**2) * (1 - eps * jnp.cos(t)) ** 2))
+    p = jnp.maximum(p, 0.0)[:, None] * (1 - (2 * z / L) ** 2)[None, :]
+    F, _ = _film2d.resultants(_film2d.with_ends(p), theta, 0.5 * L * pr.s, R)
+    p = p * pr.W / jnp.maximum(jnp.hypot(F[0], F[1]), jnp.finfo(c.dtype).tiny) / pr.p_ref
+    # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
+    # zone by one cell per iteration
+    p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
+    return jnp.concatenate([p.ravel(), eps * jnp.stack([jnp.cos(a), jnp.sin(a)])])
+
+
+def linear_model(x, pr: Params, cfg: Config, relaxed=False):
+    """``(solve, solve_transpose)`` of the Newton system at x, exact and direct: the cell
+    equations' Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1
+    cells across the width, cyclic), bordered by the two position columns and force rows
+    (:func:`vjax._blocks.bordered_solver`, O(n m^3))."""
+    n, m = cfg.n, cfg.m
+    N = _unknowns(cfg)
+    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, relaxed=relaxed)[0]
+    blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, m - 1)
+    full = lambda y: equations(y, pr, cfg, relaxed)[0]
+    _, matvec = jax.linearize(full, x)
+    _, vjp = jax.vjp(full, x)
+    unit = jnp.eye(N + 2, dtype=x.dtype)[N:]
+    cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
+    rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
+    return _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
+
+
+def _newton(x0, pr: Params, cfg: Config, relaxed=False):
+    def eqs(x, state):
+        r, hmin = equations(x, pr, cfg, relaxed)
+        return r, state, hmin > 0
+
+    N = _unknowns(cfg)
+    cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
+                                linear_solve=lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r))
+    return x, stats
+
+
+def _steady(pr: Params, cfg: Config):
+    """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
+    stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
+    solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
+    raised by 0.1 p_ref. The stages run through one Newton (compiled once), the relaxation a
+    traced switch."""
+    x0 = jax.lax.stop_gradient(pr.x0)
+    if cfg.cavitation != "reynolds":
+        return _newton(x0, pr, cfg)
+    N = _unknowns(cfg)
+    held = pr.groove[:, 1:-1].ravel() > 0
+
+    def cond(c):
+        k, _, _, st = c
+        return (k == 0) | ((k == 1) & ~st.converged) | ((k == 2) & st.converged)
+
+    def body(c):
+        k, x, its, _ = c
+        relaxed = k == 1
+        x1, st = _newton(jnp.where(relaxed, x0, x), pr, cfg, relaxed)
+        # after the half-Sommerfeld stage: its pressure, clipped and raised, starts Reynolds
+        start = x1.at[:N].set(jnp.where(held, x1[:N], jnp.maximum(x1[:N], 0.0) + 0.1))
+        return k + 1, jnp.where(relaxed, start, x1), its + st.iterations, st
+
+    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    k, x, its, st = jax.lax.while_loop(cond, body, (0, x0, jnp.asarray(0), init))
+    # a failed half-Sommerfeld stage ends the solve with its own code
+    return x, _solve.Stats(its, st.residual, st.result)
+
+
+def _outputs(x, pr: Params, cfg: Config, stats):
+    f = fields(x, pr, cfg)
+    n = cfg.n
+    N = _unknowns(cfg)
+    R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
+    dth = 2 * jnp.pi / n
+    wz = _film2d.node_widths(z)
+    hx, dpdx = f["hx"], f["dpdx"]
+    dU = pr.omega_B * R - pr.omega_J * RJ
+    poiseuille = (-0.5 * hx * dpdx) @ wz
+    couette = (eta * dU / hx) @ wz
+    arc = R * dth
+    TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
+    TB, TJ = TB_p - R * arc * jnp.sum(couette), TJ_p + RJ * arc * jnp.sum(couette)
+    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + eta * dU**2 / hx) @ wz) \
+        + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
+    leakage = _film2d.end_outflow(f["p"], f["h"], z, R, eta)
+    # the groove's net outflow: its interior cells, the ones held at the supply pressure; its
+    # downstream flow into the land: every node of its column (the end nodes' half cells carry
+    # Couette flow too)
+    supply = jnp.sum(pr.groove[:, 1:-1] * _film2d.net_outflow(f, R, z))
+    qx = f["qx"]
+    downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
+    inlet = jnp.sum(pr.groove * downstream * wz[None, :])
+    F, M = _film2d.resultants(f["p_load"], theta, z, R)
+    rot = lambda a: jnp.stack([jnp.cos(pr.frame) * a[0] - jnp.sin(pr.frame) * a[1],
+                               jnp.sin(pr.frame) * a[0] + jnp.cos(pr.frame) * a[1]])
+    e = f["e"]
+    h = f["h"]
+    k = jnp.argmin(h)
+    i, j = k // h.shape[1], k % h.shape[1]
+    load_dir = jnp.arctan2(pr.load[1], pr.load[0])
+    phi = jnp.angle(jnp.exp(1j * (jnp.arctan2(e[1], e[0]) - load_dir)))
+    return FiniteJournalResult(
+        theta=theta, z=z, pressure=f["p_load"], film=h, displacement=jnp.zeros_like(h), force=-rot(F),
+        moment=rot(M), position=rot(e), eccentricity=jnp.hypot(e[0], e[1]) / pr.c, attitude_angle=phi,
+        line_of_centres_angle=jnp.angle(jnp.exp(1j * (pr.frame + jnp.arctan2(e[1], e[0])))),
+        min_film=h[i, j], min_film_theta=theta[i], min_film_z=z[j], max_pressure=jnp.max(f["p_load"]),
+        torque=TB, torque_shaft=TJ, torque_poiseuille=TB_p, torque_poiseuille_shaft=TJ_p,
+        side_leakage=leakage, supply_flow=supply, inlet_flow=inlet, power_loss=power,
+        iterations=stats.iterations, residual=stats.residual, result=stats.result)
+
+
+def solve(pr: Params, cfg: Config, cold: bool = False) -> tuple[jax.Array, _solve.Stats]:
+    """The converged unknowns x (implicitly differentiable) and the Newton record; ``cold``:
+    start from the rigid estimate (:func:`_guess`) instead of ``pr.x0``."""
+    if cold:
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(_guess(pr, cfg)))
+    return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
+                                lambda x, aux, prm: linear_model(x, prm, cfg))(pr)
+
+
+@partial(jax.jit, static_argnums=(1, 2))
+def _run(pr: Params, cfg: Config, cold: bool):
+    x, stats = solve(pr, cfg, cold)
+    return _outputs(x, pr, cfg, stats)
+
+
+def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
+          load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
+          supply_width=1.0, tilt=None, options: FiniteJournalOptions = FiniteJournalOptions()):
+    """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`)."""
+    _checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
+    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
+    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
+                         f"got {cavitation!r}")
+    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    if Rv is not None and cv is not None and not np.all(cv < Rv):
+        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
+    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
+        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
+                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
+    sw = _checks.values("supply_width", supply_width)
+    if sw is None or not (0 < sw <= 1):
+        raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
+                         f"got {supply_width!r}")
+    n, m = options.n, options.m
+    dtype = jnp.result_type(float)
+    f = lambda v: jnp.asarray(v, dtype)
+    load = jnp.asarray(load)
+    if load.ndim == 0:
+        _checks.positive("load", load)
+        Wvec = jnp.stack([load * jnp.cos(load_angle), load * jnp.sin(load_angle)])
+    elif load.shape == (2,):
+        lv = _checks.values("load", load)
+        if lv is not None and not np.hypot(*lv) > 0:
+            raise ValueError(f"load must be a non-zero vector, got {load!r}")
+        Wvec = load
+    else:
+        raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")
+    Wvec = f(Wvec)
+    frame = jax.lax.stop_gradient(jnp.arctan2(Wvec[1], Wvec[0]))
+    turn = lambda a: jnp.stack([jnp.cos(frame) * a[0] + jnp.sin(frame) * a[1],
+                                -jnp.sin(frame) * a[0] + jnp.cos(frame) * a[1]])
+    if tilt is None:
+        tilt = jnp.zeros(2, dtype)
+    else:
+        tilt = f(tilt)
+        _checks.finite("tilt", tilt)
+        if tilt.shape != (2,):
+            raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {tilt.shape}")
+    groove = np.zeros((n, m + 1))
+    if supply_angle is not None:
+        _scene.scalars(_checks.finite, supply_angle=supply_angle)
+        sa = _checks.values("supply_angle", supply_angle)
+        if sa is None:
+            raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
+        g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
+        s = _film2d.unit_nodes(m, options.spacing)     # z / (L/2)
+        groove[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
+    groove = jnp.asarray(groove, dtype)
+    W = jnp.hypot(Wvec[0], Wvec[1])
+    v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
+    floor = 1e-10 if dtype == jnp.float64 else 1e-4
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
+    pr = Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
+                W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
+                omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=groove,
+                s=jnp.asarray(_film2d.unit_nodes(m, options.spacing), dtype),
+                x0=jnp.zeros(_unknowns(cfg) + 2, dtype))
+    return pr, cfg
+
+
+def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
+                           load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
+                           supply_width=1.0, tilt=None, initial: FiniteJournalResult | None = None,
+                           options: FiniteJournalOptions = FiniteJournalOptions(),
+                           throw: bool = True) -> FiniteJournalResult:
+    """Steady state of a finite rigid journal bearing of axial ``length`` L (m) under ``load``
+    (N, total). Called by :func:`vjax.journal_bearing` with ``length=``; the arguments are
+    its own (module docstring), plus ``supply_width`` (fraction of L the axial groove spans,
+    centred; default 1) and ``tilt`` (gamma_x, gamma_y) (rad, absolute axes; the journal centre
+    at axial position z is displaced by z gamma). Returns :class:`FiniteJournalResult`."""
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
+                    omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+                    supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width,
+                    tilt=tilt, options=options)
+    n, m = options.n, options.m
+    if initial is not None:
+        if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
+            raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
+        c = pr.c
+        back = jnp.stack([jnp.cos(pr.frame) * initial.position[0] + jnp.sin(pr.frame) * initial.position[1],
+                          -jnp.sin(pr.frame) * initial.position[0] + jnp.cos(pr.frame) * initial.position[1]])
+        x0 = jnp.concatenate([(initial.pressure[:, 1:-1] / pr.p_ref).ravel(), back / c])
+        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(pr.x0.dtype))
+    sol = _run(pr, cfg, initial is None)
+    _solve.report("journal_bearing (finite length)", sol, throw)
+    return sol
+
+
+def check_supported(length, housing, shaft, temperature, shift, groove, cavitation):
+    """Refuse, naming the argument, what the finite bearing does not have (yet): deformable
+    bodies, JFO, a groove turning with the line of centres; and tilt without a length."""
+    if length is None:
+        raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
+    if housing is not None or shaft is not None or temperature is not None or shift is not None:
+        raise ValueError("housing, shaft (and temperature, shift): the finite bearing (length=) has rigid bodies "
+                         "only so far; use the infinitely long bearing (length=None) for deformable ones")
+    if groove not in (None, "fixed"):
+        raise ValueError(f"groove must be 'fixed' (in the bearing) with length=, got {groove!r}")
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
+                         f"got {cavitation!r}")
+
+
+def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
+                           omega_housing, load_angle, memory, cavitation, supply_angle, supply_pressure,
+                           supply_width, groove, tilt, temperature, shift, initial, options, throw):
+    """:func:`vjax.journal_bearing`'s arguments -> :func:`finite_journal_bearing`."""
+    check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
+    return finite_journal_bearing(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
+                                  omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+                                  supply_angle=supply_angle, supply_pressure=supply_pressure,
+                                  supply_width=supply_width, tilt=tilt, initial=initial, options=options,
+                                  throw=throw)
+
+
+@partial(jax.jit, static_argnums=(2,))
+def stiffness_damping(x0, pr: Params, cfg: Config):
+    """K and C (N/m, N s/m; absolute axes) of the rigid finite film about the steady unknowns
+    x0: the cell equations linearized (Fischer-Burmeister as is: a cavitated cell stays at
+    p = 0, a pressurized one conserves mass with the squeeze term R dtheta dz dh/dt) in the
+    pressures and the journal's motion (dX, dY, dX/dt, dY/dt), which changes the film by
+    -(dX cos theta + dY sin theta) and its rate likewise (the groove is fixed in the bearing,
+    the grid fixed in space). dp = -A^-1 B d(motion), dF = G dp:
+    K = G A^-1 B[:, :2], C = G A^-1 B[:, 2:] (dF = -(K dx + C dx/dt)); independent of the whirl
+    frequency for a rigid film. A from the block solver; differentiable through x0."""
+    N = _unknowns(cfg)
+    motion0 = jnp.zeros(4, x0.dtype)
+    cells = lambda pz, mo: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, mo)[0]
+    force = lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1]
+    blocks = _blocks.neighbourhood_blocks(lambda pz: cells(pz, motion0), x0[:N], cfg.n, cfg.m - 1)
+    empty = jnp.zeros((N, 0), x0.dtype)
+    solve, _ = _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x0.dtype))
+    B = jax.jacfwd(lambda mo: cells(x0[:N], mo))(motion0)              # (N, 4)
+    G = jax.jacrev(force)(x0[:N])                                       # (2, N)
+    KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (2, 4) = -dF/d(motion)
+    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
+    rot = jnp.array([[c, -s], [s, c]])
+    turn = lambda A: rot @ A @ rot.T
+    return turn(KC[:, :2]), turn(KC[:, 2:])
+
+
+def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config):
+    """(K, C) (N/m, N s/m, absolute axes) about a converged :class:`FiniteJournalResult` of the
+    bearing ``pr``, ``cfg`` (the steady solve of the same arguments); its pressure recovered
+    for the half-Sommerfeld film (whose result holds the clipped pressure) by one more solve."""
+    frame_back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
+                            -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
+    x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), frame_back / pr.c])
+    if cfg.cavitation == "half_sommerfeld":
+        x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
+    return stiffness_damping(x0, pr, cfg)
+
+
+def finite_coefficients(R, radial_clearance, viscosity, load, length, *, initial=None, throw=True, **kw):
+    """Steady :class:`FiniteJournalResult` and its (K, C) (N/m, N s/m, absolute axes) for
+    ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
+    :func:`finite_journal_bearing` (its rigid film's K, C do not depend on the whirl)."""
+    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
+    K, C = coefficients(steady, pr, cfg)
+    return steady, K, C
+
+
+@partial(jax.jit, static_argnums=(2,))
+def force_at(x, pr: Params, cfg: Config, motion):
+    """Film force on the journal (N, grid axes) with the journal held at the position of x
+    (its last two entries, e/c) plus ``motion`` (dX, dY, dX/dt, dY/dt) (m, m/s): the nonlinear
+    cell equations solved by Newton for the pressures from x's (the position control the
+    dynamic coefficients linearize); returns (force, :class:`~vjax._solve.Stats`)."""
+    N = _unknowns(cfg)
+    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[0]
+    empty = jnp.zeros((N, 0), x.dtype)
+
+    def linear_solve(pz, state, r):
+        blocks = _blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1)
+        return _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x.dtype))[0](-r)
+
+    pz, _, stats = _solve.newton(lambda pz, s: (cells(pz), s, True), x[:N], None, tol=cfg.tol,
+                                 max_iter=cfg.max_iter, linear_solve=linear_solve)
+    return cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[1], stats
