@@ -53,9 +53,10 @@ STAGES = [
     ("dynamics", "experiments.journal_dynamics", "main"),
     ("bores", "experiments.journal_bores", "stage"),
 ]
-# the order stages start in when they run side by side: longest first (times of a full run
-# on two cores), so that the last to finish is a short one
-PRIORITY = [s for name in ("calibration", "journal", "bodies", "roller", "pin", "dynamics", "foundation", "bores")
+# the order stages start in when they run side by side: longest first (a full run on two
+# cores: roller 76 s, pin 70, journal 68, bodies 54, dynamics 48, bores 15, foundation 8,
+# calibration 4, which bodies waits for), so that the last to finish are short ones
+PRIORITY = [s for name in ("calibration", "roller", "pin", "journal", "bodies", "dynamics", "bores", "foundation")
             for s in STAGES if s[0] == name]
 DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material.json
 
