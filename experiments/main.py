@@ -26,7 +26,8 @@ raises stops it (files are written atomically, so nothing half-written is left b
 The stages run side by side in ``--jobs`` worker processes (default: one per CPU), longest
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. Most of a stage is XLA compiling its solvers, one
-core's work: on two cores the full run takes about 3 minutes, against about 4 one stage after another.
+core's work: on two cores the full run takes about 3 minutes, against about 4 one stage
+after another.
 """
 from __future__ import annotations
 
