@@ -9,12 +9,7 @@ Speed: one grid and cavitation model for the solves (compiled once: lengths, loa
 tilts and the axial spacing are traced values), the long bearing's and a few small linear
 solves apart.
 """
-import os
-import subprocess
-import sys
-import textwrap
 from functools import partial
-from pathlib import Path
 
 import jax
 import jax.numpy as jnp
@@ -267,21 +262,7 @@ def test_bad_input_names_the_argument():
             journal_bearing(R, C, ETA, 100.0, omega_shaft=WJ, **kw)
 
 
-def test_float32_runs_without_nan():
-    code = textwrap.dedent("""
-        import warnings; warnings.simplefilter("ignore")
-        import jax, numpy as np, vjax
-        s = vjax.journal_bearing(0.05, 5e-5, 0.01, 2000.0, omega_shaft=100.0, length=0.1, tilt=(1e-4, 0.0),
-                                 options=vjax.FiniteJournalOptions(n=16, m=4), throw=False)
-        leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
-        assert s.pressure.dtype == np.float32, s.pressure.dtype
-        assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
-        print("ok")
-    """)
-    env = dict(os.environ, JAX_ENABLE_X64="0")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
-                         cwd=str(Path(__file__).resolve().parents[1]), timeout=300)
-    assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]
+# float32: tests/test_journal.py::test_float32_runs_without_nan runs the finite bearing too
 
 
 # ---------------------------------------------------------------- dynamic coefficients
