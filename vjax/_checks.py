@@ -54,6 +54,19 @@ def finite(name: str, x) -> None:
     values(name, x)
 
 
+def load(x) -> None:
+    """A bearing's ``load``: a positive magnitude or a non-zero vector (Fx, Fy)."""
+    shape = np.shape(x)
+    if shape == ():
+        positive("load", x)
+    elif shape == (2,):
+        a = values("load", x)
+        if a is not None and not np.hypot(*a) > 0:
+            raise ValueError(f"load must be a non-zero vector, got {x!r}")
+    else:
+        raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {shape}")
+
+
 def one_of(name: str, x, options) -> None:
     if x not in options:
         raise ValueError(f"{name} must be one of {sorted(map(str, options))}, got {x!r}")

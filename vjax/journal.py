@@ -122,7 +122,8 @@ HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
 GROOVES = ("line_of_centres", "fixed")
 JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
-NESTED_MIN_N = 128   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid
+NESTED_MIN_N = 128   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid,
+NESTED_MIN_N_RIGID = 512   # without bodies from this many (below it a direct start converges)
 KRYLOV_MIN_N = 1024  # linear_solver="auto": dense LU up to this many elements, GMRES above
 KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
 
@@ -274,6 +275,7 @@ def _gmres(matvec, precond):
     return lambda b: _krylov.gmres(matvec, b, precond, KRYLOV_TOL, 200)[0]
 
 
+@partial(jax.jit, static_argnums=(1, 2))
 def _guess(pr: _Params, n, cfg: _Config):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
     moved with the bodies' rigid displacement under the load."""
@@ -653,10 +655,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         if not isinstance(initial, JournalResult) or any(a.shape != (n,) for a in (initial.pressure,
                                                                                    initial.film_fraction)):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
-        # film fraction - 1 in a "jfo" cavity (0 elsewhere): the universal unknown
-        x0 = jnp.concatenate([initial.pressure / p_ref + initial.film_fraction - 1.0,
-                              jnp.stack([initial.eccentricity, initial.attitude_angle])])
-    elif options.strategy == "auto" and n >= NESTED_MIN_N and n % 4 == 0:
+        x0 = _start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref)
+    elif options.strategy == "auto" and n >= (NESTED_MIN_N if housing is not None or shaft is not None else NESTED_MIN_N_RIGID) and n % 4 == 0:
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
         # cold start are spent far from the solution, where a coarse grid is as good and
         # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
@@ -665,15 +665,25 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, groove=groove,
             options=dataclasses.replace(options, n=n // 4), throw=False)
-        p0 = _refine_periodic(coarse.pressure, n)
-        x0 = jnp.concatenate([p0 / p_ref, jnp.stack([coarse.eccentricity, coarse.attitude_angle])])
+        x0 = _start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref)
     else:
         x0 = _guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
-    _solve.report("journal_bearing" + _failure_hint(pr, n), sol, throw)
+    # the hint only for a failure it can explain (concrete values; its eager operations
+    # would otherwise compile on every first call)
+    failed = throw and _checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
+    _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
     return sol
 
 
+@jax.jit
+def _start(pressure, film_fraction, eccentricity, attitude_angle, p_ref):
+    """Unknowns from a solution: p / p_ref plus, in a "jfo" cavity, film fraction - 1 (the
+    universal variable), then eps and the attitude angle."""
+    return jnp.concatenate([pressure / p_ref + (film_fraction - 1.0), jnp.stack([eccentricity, attitude_angle])])
+
+
+@partial(jax.jit, static_argnums=1)
 def _refine_periodic(values, n):
     """Periodic Catmull-Rom (C1 cubic) interpolation of values on a ring grid onto n points,
     clipped at 0. Not linear: a piecewise-linear pressure puts all its curvature on the
@@ -736,7 +746,7 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
         raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
-    Wx, Wy = _load_vector(load, load_angle)
+    _checks.load(load)
     wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
     if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
         raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
@@ -753,31 +763,30 @@ def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, om
     tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
     cfg = _Config(cavitation, options, float(tol), groove == "fixed")
 
+    groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
+    pr = _params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure,
+                 groove_cell, housing, shaft, n=n, memory=memory)
+    return pr, cfg, housing, shaft
+
+
+@partial(jax.jit, static_argnames=("n", "memory"))
+def _params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure, groove,
+            housing, shaft, *, n, memory):
+    """Checked arguments -> :class:`_Params` with a zero start, in one compiled program (built
+    eagerly, its few dozen scalar and grid operations would each compile on a first call,
+    together about as long as the solver itself)."""
+    dtype = jnp.result_type(float)
     f = lambda v: jnp.asarray(v, dtype)
+    load = f(load)
+    Wx, Wy = (load * jnp.cos(load_angle), load * jnp.sin(load_angle)) if load.ndim == 0 else (load[0], load[1])
     W = jnp.hypot(Wx, Wy)
     eta, c = f(viscosity), f(radial_clearance)
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
     p_ref = W / (2 * R)
-    pr = _Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=f(W), load_angle=f(jnp.arctan2(Wy, Wx)),
-                 ps=f(supply_pressure), groove=jnp.asarray(int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n),
-                 omega_B=f(omega_housing), omega_J=f(omega_shaft), p_ref=f(p_ref),
-                 q_ref=f(c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c),
-                 op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
-                 op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
-                                                                memory=memory),
-                 x0=jnp.zeros(n + 2, dtype))
-    return pr, cfg, housing, shaft
-
-
-def _load_vector(load, load_angle):
-    """(Wx, Wy) from a magnitude along ``load_angle`` or a vector; refuses zero loads."""
-    load = jnp.asarray(load)
-    if load.ndim == 0:
-        _checks.positive("load", load)
-        return load * jnp.cos(load_angle), load * jnp.sin(load_angle)
-    if load.shape == (2,):
-        lv = _checks.values("load", load)
-        if lv is not None and not np.hypot(*lv) > 0:
-            raise ValueError(f"load must be a non-zero vector, got {load!r}")
-        return load[0], load[1]
-    raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")
+    return _Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=W, load_angle=jnp.arctan2(Wy, Wx),
+                   ps=f(supply_pressure), groove=jnp.asarray(groove), omega_B=f(omega_housing), omega_J=f(omega_shaft),
+                   p_ref=p_ref, q_ref=c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c,
+                   op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
+                   op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
+                                                                  memory=memory),
+                   x0=jnp.zeros(n + 2, dtype))

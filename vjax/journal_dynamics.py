@@ -63,7 +63,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _solve, journal_finite, reynolds
-from .journal import JournalOptions, JournalResult, _Config, _equations, _newton, _offset, _Params, _setup, journal_bearing
+from .journal import (JournalOptions, JournalResult, _Config, _equations, _newton, _offset, _Params, _setup, _start,
+                      journal_bearing)
 from .operator import grid
 
 __all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
@@ -324,9 +325,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     pr, cfg, hb, sb = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
                              load_angle, "periodic", cavitation, supply_angle, supply_pressure, temperature, shift,
                              options, groove)
-    # the universal unknown of "jfo" (film fraction - 1 in its cavity; the pressure elsewhere)
-    x0 = jnp.concatenate([sol.pressure / pr.p_ref + sol.film_fraction - 1.0,
-                          jnp.stack([sol.eccentricity, sol.attitude_angle])])
+    x0 = _start(sol.pressure, sol.film_fraction, sol.eccentricity, sol.attitude_angle, pr.p_ref)
     Z, C, stats = _linearized(x0, pr, ((hb, pr.R, -pr.omega_B), (sb, pr.RJ, -pr.omega_J)), whirl, cfg)
     if stats is not None:
         _solve.report("journal_coefficients (half-Sommerfeld pressure)", stats, throw)

@@ -396,31 +396,13 @@ def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omeg
     if sw is None or not (0 < sw <= 1):
         raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
                          f"got {supply_width!r}")
-    n, m = options.n, options.m
-    dtype = jnp.result_type(float)
-    f = lambda v: jnp.asarray(v, dtype)
-    load = jnp.asarray(load)
-    if load.ndim == 0:
-        _checks.positive("load", load)
-        Wvec = jnp.stack([load * jnp.cos(load_angle), load * jnp.sin(load_angle)])
-    elif load.shape == (2,):
-        lv = _checks.values("load", load)
-        if lv is not None and not np.hypot(*lv) > 0:
-            raise ValueError(f"load must be a non-zero vector, got {load!r}")
-        Wvec = load
-    else:
-        raise ValueError(f"load must be a magnitude or a vector (Fx, Fy), got shape {load.shape}")
-    Wvec = f(Wvec)
-    frame = jax.lax.stop_gradient(jnp.arctan2(Wvec[1], Wvec[0]))
-    turn = lambda a: jnp.stack([jnp.cos(frame) * a[0] + jnp.sin(frame) * a[1],
-                                -jnp.sin(frame) * a[0] + jnp.cos(frame) * a[1]])
-    if tilt is None:
-        tilt = jnp.zeros(2, dtype)
-    else:
-        tilt = f(tilt)
+    _checks.load(load)
+    if tilt is not None:
         _checks.finite("tilt", tilt)
-        if tilt.shape != (2,):
-            raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {tilt.shape}")
+        if np.shape(tilt) != (2,):
+            raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {np.shape(tilt)}")
+    n, m = options.n, options.m
+    s = _film2d.unit_nodes(m, options.spacing)     # z / (L/2)
     groove = np.zeros((n, m + 1))
     if supply_angle is not None:
         _scene.scalars(_checks.finite, supply_angle=supply_angle)
@@ -428,19 +410,43 @@ def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omeg
         if sa is None:
             raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
-        s = _film2d.unit_nodes(m, options.spacing)     # z / (L/2)
         groove[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
-    groove = jnp.asarray(groove, dtype)
+    floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
+    pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
+                 supply_pressure, groove, s, unknowns=_unknowns(cfg))
+    return pr, cfg
+
+
+@partial(jax.jit, static_argnames="unknowns")
+def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
+            supply_pressure, groove, s, *, unknowns):
+    """Checked arguments -> :class:`Params` with a zero start, in one compiled program (eager,
+    each of its operations would compile on a first call)."""
+    dtype = jnp.result_type(float)
+    f = lambda v: jnp.asarray(v, dtype)
+    load = f(load)
+    Wvec = jnp.stack([load * jnp.cos(load_angle), load * jnp.sin(load_angle)]) if load.ndim == 0 else load
+    frame = jax.lax.stop_gradient(jnp.arctan2(Wvec[1], Wvec[0]))
+    turn = lambda a: jnp.stack([jnp.cos(frame) * a[0] + jnp.sin(frame) * a[1],
+                                -jnp.sin(frame) * a[0] + jnp.cos(frame) * a[1]])
+    tilt = jnp.zeros(2, dtype) if tilt is None else f(tilt)
     W = jnp.hypot(Wvec[0], Wvec[1])
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
-    floor = 1e-10 if dtype == jnp.float64 else 1e-4
-    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
-    pr = Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
-                W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
-                omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=groove,
-                s=jnp.asarray(_film2d.unit_nodes(m, options.spacing), dtype),
-                x0=jnp.zeros(_unknowns(cfg) + 2, dtype))
-    return pr, cfg
+    return Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
+                  W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
+                  omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=f(groove), s=f(s),
+                  x0=jnp.zeros(unknowns + 2, dtype))
+
+
+@jax.jit
+def _start(pressure, position, pr: Params):
+    """Unknowns [p / p_ref at the interior nodes, journal centre / c in the load frame] from a
+    solution (absolute frame), as a start that is not differentiated."""
+    back = jnp.stack([jnp.cos(pr.frame) * position[0] + jnp.sin(pr.frame) * position[1],
+                      -jnp.sin(pr.frame) * position[0] + jnp.cos(pr.frame) * position[1]])
+    x0 = jnp.concatenate([(pressure[:, 1:-1] / pr.p_ref).ravel(), back / pr.c])
+    return jax.lax.stop_gradient(x0).astype(pr.x0.dtype)
 
 
 def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
@@ -461,11 +467,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omeg
     if initial is not None:
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
             raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
-        c = pr.c
-        back = jnp.stack([jnp.cos(pr.frame) * initial.position[0] + jnp.sin(pr.frame) * initial.position[1],
-                          -jnp.sin(pr.frame) * initial.position[0] + jnp.cos(pr.frame) * initial.position[1]])
-        x0 = jnp.concatenate([(initial.pressure[:, 1:-1] / pr.p_ref).ravel(), back / c])
-        pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(pr.x0.dtype))
+        pr = dataclasses.replace(pr, x0=_start(initial.pressure, initial.position, pr))
     sol = _run(pr, cfg, initial is None)
     _solve.report("journal_bearing (finite length)", sol, throw)
     return sol
