@@ -186,6 +186,29 @@ def _basis_modes(m):
             jnp.where(zero, 2 * jnp.pi, 0.0))
 
 
+def _solve_small(A, b):
+    """x with A x = b for a batch of small systems, A (..., k, k), b (..., k): Gaussian
+    elimination with partial pivoting (as LAPACK's getrf), unrolled over the k columns.
+
+    Not ``jnp.linalg.solve``: on CPU, jaxlib's LAPACK kernels spread a batch over XLA's thread
+    pool from inside that pool and wait for it, so two batched solves running side by side in
+    one program (a liner's and a sleeve's 65536 modes) can leave no free thread: with two
+    cores, jaxlib 0.10.2 was seen to deadlock there."""
+    k = A.shape[-1]
+    rows = jnp.arange(k)
+    M = jnp.concatenate([A, b[..., None]], axis=-1)                   # augmented (..., k, k + 1)
+    for j in range(k):
+        p = j + jnp.argmax(jnp.abs(M[..., j:, j]), axis=-1)          # pivot row
+        swap = jnp.where(rows == j, p[..., None], jnp.where(rows == p[..., None], j, rows))
+        M = jnp.take_along_axis(M, swap[..., None], axis=-2)
+        below = jnp.where(rows[:, None] > j, M[..., :, j:j + 1] / M[..., j:j + 1, j:j + 1], 0.0)
+        M = M - below * M[..., j:j + 1, :]
+    x = []
+    for i in reversed(range(k)):
+        x.insert(0, (M[..., i, k] - sum(M[..., i, i + 1 + q] * x[q] for q in range(len(x)))) / M[..., i, i])
+    return jnp.stack(x, -1)
+
+
 def _michell_modes(kind, m, nu, tau):
     """c_m of a layer of thickness ratio tau (Michell's solution, plane strain, E = 1, R = 1).
 
@@ -223,7 +246,7 @@ def _michell_modes(kind, m, nu, tau):
     loaded, bonded = columns(1.0), columns(rb)
     A = jnp.concatenate([loaded[..., 2:, :], bonded[..., :2, :]], axis=-2)
     rhs = jnp.broadcast_to(jnp.array([-1.0, 0.0, 0.0, 0.0], dtype=A.dtype), A.shape[:-1])
-    coef = jnp.linalg.solve(A, rhs[..., None])[..., 0]
+    coef = _solve_small(A, rhs)
     u = jnp.sum(loaded[..., 0, :] * coef, -1)
     c_m = u if kind == "liner" else -u                   # into the body
     c_0 = (kap - 1) * jnp.abs(rb**2 - 1) / (2 * mu * (2 + (kap - 1) * rb**2))
