@@ -17,7 +17,7 @@ import pytest
 
 import vjax
 from vjax import JournalOptions, _solve, journal_bearing, journal_coefficients, reference, reynolds
-from vjax import journal_dynamics
+from vjax import _journal_film, journal_dynamics
 from vjax.operator import grid
 
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
@@ -156,8 +156,10 @@ def test_viscoelastic_liner_limits():
     visco = journal_coefficients(**kw, housing=vjax.liner(mat, 0.01), whirl=W)
     rubbery = journal_coefficients(**kw, housing=vjax.liner(vjax.Material.elastic(E0, 0.5), 0.01), whirl=W)
     # the glassy response about the rubbery steady state: the same linearization, elastic Einf body
-    pr, cfg, _, _ = vjax.journal._setup(RB, CB, ETAB, kw["load"], vjax.liner(mat, 0.01), None, -0.4, 0.0, -math.pi / 2,
-                                        "periodic", "reynolds", math.pi, 0.0, None, None, kw["options"])
+    pr, cfg, _, _ = _journal_film.setup(RB, CB, ETAB, kw["load"], housing=vjax.liner(mat, 0.01), shaft=None,
+                                        omega_shaft=-0.4, omega_housing=0.0, load_angle=-math.pi / 2,
+                                        memory="periodic", cavitation="reynolds", supply_angle=math.pi,
+                                        supply_pressure=0.0, temperature=None, shift=None, options=kw["options"])
     x0 = jnp.concatenate([visco.steady.pressure / pr.p_ref,
                           jnp.stack([visco.steady.eccentricity, visco.steady.attitude_angle])])
     glass_body = vjax.liner(vjax.Material.elastic(1e8, 0.5), 0.01)

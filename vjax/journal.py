@@ -85,7 +85,7 @@ datum, two force components). The core's damped Newton (:func:`vjax._solve.newto
 giving h <= 0 are rejected), each step solved (``options.linear_solver``) with the exact
 dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products,
 O(n log n)) preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on
-its lowest Fourier modes (:func:`_linear_model`; exact for rigid bodies); "auto" switches to
+its lowest Fourier modes (:func:`vjax._journal_film.linear_model`; exact for rigid bodies); "auto" switches to
 GMRES above n = 1024, and the implicit derivatives use the same solve. The bodies'
 deformation takes its Fourier mode 1 (a rigid translation) from the load, which the film
 force equals at the root, not from the iterate's pressure: the same root, without a
@@ -113,20 +113,15 @@ from functools import partial
 
 import jax
 import jax.numpy as jnp
-import numpy as np
 
-from . import _banded, _checks, _krylov, _scene, _solve, journal_finite, reference, reynolds
-from .bodies import as_body, check_fits, disc, hole
-from .operator import RingOperator, grid, memory_revolutions
+from . import _checks, _scene, _solve, journal_finite, reference, reynolds
+from . import _journal_film as film
+from .operator import RingOperator
 
-HOUSINGS = ("hole", "liner", "half_plane")
-SHAFTS = ("disc", "sleeve", "half_plane")
-GROOVES = ("line_of_centres", "fixed")
 JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
 NESTED_MIN_N = 128   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid,
 NESTED_MIN_N_RIGID = 512   # rigid ones from this many (direct: 19 steps at n = 256, 27 at 512, > 40 at 1024)
 KRYLOV_MIN_N = 1024  # linear_solver="auto": dense LU up to this many elements, GMRES above
-KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
 
 
 @dataclasses.dataclass(frozen=True)
@@ -228,209 +223,14 @@ class JournalResult(_scene.SceneResult):
     result: jax.Array
 
 
-@jax.tree_util.register_dataclass
-@dataclasses.dataclass(frozen=True)
-class _Params:
-    """Differentiable parameters (SI); the operators are None for rigid bodies."""
-
-    R: jax.Array
-    RJ: jax.Array
-    c: jax.Array
-    eta: jax.Array
-    v: jax.Array                 # entrainment speed (m/s)
-    W: jax.Array                 # load magnitude (N/m)
-    load_angle: jax.Array
-    ps: jax.Array                # groove pressure (Pa)
-    groove: jax.Array            # grid index of the groove's cell (int; traced: a groove moved compiles nothing)
-    omega_B: jax.Array
-    omega_J: jax.Array
-    p_ref: jax.Array
-    q_ref: jax.Array
-    op_B: RingOperator | None
-    op_J: RingOperator | None
-    x0: jax.Array                # starting point: travels with the parameters, not differentiated
-
-
-@dataclasses.dataclass(frozen=True)
-class _Config:
-    cavitation: str
-    options: JournalOptions
-    tol: float
-    fixed_groove: bool = False     # grid on the load line (groove fixed in the bearing)
-
-
-def _offset(x, cfg: _Config):
-    """Angle of the line of centres on the grid: 0 on the line-of-centres grid, the
-    attitude angle on the load-line grid of a fixed groove."""
-    return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
-
-
-def _load_number(pr: _Params):
-    """G = |W| c^2 / (12 eta |v| R^2): the load over the rigid film's capacity scale (the rigid
-    half-Sommerfeld bearing runs at the eccentricity with this load number)."""
-    return pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
-
-
-def _gmres(matvec, precond):
-    """b -> the GMRES solution of one Newton (or derivative) system, preconditioned."""
-    return lambda b: _krylov.gmres(matvec, b, precond, KRYLOV_TOL, 200)[0]
-
-
-@partial(jax.jit, static_argnums=(1, 2))
-def _guess(pr: _Params, n, cfg: _Config):
-    """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
-    moved with the bodies' rigid displacement under the load."""
-    v = pr.v
-    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(_load_number(pr)), 0.95)
-    phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
-    # The load's mode-1 pressure moves the bodies rigidly by D (complex, m): place the journal
-    # so that the film keeps the rigid estimate's shape and its angle to the load,
-    # c eps e^{i beta} = c eps_r + D e^{i phi_r} = z (beta: angle of the film's minimum from
-    # the line of centres), and let the pressure follow the film.
-    s1 = sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
-    z = pr.c * eps + s1 * pr.W / (pr.R * jnp.pi) * jnp.exp(1j * phi)
-    film_line = phi if cfg.fixed_groove else jnp.angle(z)      # grid angle of the film's minimum
-    theta = grid(n)[0] - film_line
-    p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
-         / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
-    eps, phi = jnp.abs(z) / pr.c, phi - jnp.angle(z)
-    # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
-    # Newton step can only grow the pressurized zone by one cell per iteration.
-    p = jnp.maximum(p, 0.0) / pr.p_ref + 0.1
-    return jnp.concatenate([p, jnp.stack([eps, phi])])
-
-
-def _fields(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
-    """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
-    "jfo" switch, see :func:`_solver`; ``deformation``: u_B + u_J given instead of computed,
-    for the Newton preconditioner)."""
-    n = x.shape[0] - 2
-    theta, alpha = grid(n)
-    pz, fraction = reynolds.pressure_and_fraction(x[:n], cfg.cavitation, smoothing)
-    p = pz * pr.p_ref
-    p_load = reynolds.load_pressure(p, cfg.cavitation)
-    # Mode 1 of the loading pressure is the film force, which equals the load at equilibrium:
-    # take it from the load (it moves the bodies rigidly, by up to hundreds of clearances for a
-    # soft bore) so that Newton does not have to find it - the same root, a far milder system.
-    zero = jnp.zeros_like(p)
-    if deformation is not None:
-        uB, uJ = deformation, zero
-    else:
-        P = jnp.fft.rfft(p_load)
-        P = P.at[1].set(pr.W * jnp.exp(-1j * (_offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
-        deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
-        uB = zero if pr.op_B is None else deform(pr.op_B)
-        uJ = zero if pr.op_J is None else deform(pr.op_J)
-    h = pr.c * (1 - x[n] * jnp.cos(theta - _offset(x, cfg))) + uB + uJ
-    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
-    return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
-                fraction=fraction)
-
-
-def _equations(x, pr: _Params, cfg: _Config, smoothing=0.0, deformation=None):
-    """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
-    n = x.shape[0] - 2
-    f = _fields(x, pr, cfg, smoothing, deformation)
-    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
-    r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
-    Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
-    Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
-    # the film balances the load, which points along the grid angle offset - attitude
-    a = _offset(x, cfg) - x[n + 1]
-    bal = jnp.stack([Fx / pr.W + jnp.cos(a), Fy / pr.W + jnp.sin(a)])
-    return jnp.concatenate([r, bal]), jnp.min(f["h"])
-
-
-def _effective_eps(h, c, offset=0.0):
-    """First Fourier mode of the film over c along the line of centres (at grid angle ``offset``)."""
-    theta, _ = grid(h.shape[0])
-    a1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.cos(theta - offset))
-    b1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.sin(theta - offset))
-    return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
-
-
-def _newton(x0, pr, cfg, smoothing=0.0):
-    """The core's Newton on the equations (films must stay positive): x, Stats (with the
-    physical branch folded into the result)."""
-    def equations(x, state):
-        r, hmin = _equations(x, pr, cfg, smoothing)
-        return r, state, hmin > 0
-
-    n = x0.shape[0] - 2
-    # a trust cap on the two geometric unknowns (eps, attitude)
-    cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    linear_solve = None
-    if cfg.options.krylov:
-        def linear_solve(x, state, r):
-            solve, _, matvec, _ = _linear_model(x, pr, cfg, smoothing)
-            return _gmres(matvec, solve)(-r)
-    x, _, stats = _solve.newton(equations, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
-                                linear_solve=linear_solve)
-    physical = _effective_eps(_fields(x, pr, cfg)["h"], pr.c, _offset(x, cfg)) > 0
-    result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
-    return x, _solve.Stats(stats.iterations, stats.residual, result)
-
-
-def _linear_model(x, pr: _Params, cfg: _Config, smoothing=0.0):
-    """The Newton system at x, matrix-free: ``(solve, solve_transpose, matvec, matvec_transpose)``,
-    the solves those of a preconditioner M ~ J, O(n k) per application.
-
-    J = A + G K D in the cell rows, plus the rows and columns of (eps, attitude): A and G the
-    derivatives of the cell equations with respect to the pressure (the film held) and to the
-    deformation (cyclic tridiagonal: a cell sees its neighbours' faces), K the bodies'
-    compliance (circulant), D the derivative of the loading pressure (diagonal). M keeps K on
-    its lowest ``krylov_modes`` Fourier modes, which carry most of a body's compliance
-    (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax._banded`).
-    For rigid bodies M = J exactly: GMRES converges in one step."""
-    n = x.shape[0] - 2
-    N, dtype = n + 2, x.dtype
-    f = _fields(x, pr, cfg, smoothing)
-    deformation = f["uB"] + f["uJ"]
-    cells = lambda u, U: _equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U)[0][:n]
-    lower, diag, upper = _banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
-    full = lambda y: _equations(y, pr, cfg, smoothing)[0]
-    _, matvec = jax.linearize(full, x)
-    _, vjp = jax.vjp(full, x)
-    unit = jnp.eye(N, dtype=dtype)
-    J_cols = jax.vmap(matvec)(unit[n:]).T                    # (N, 2): d/d(eps, attitude)
-    J_rows = jax.vmap(lambda c: vjp(c)[0])(unit[n:])[:, :n]    # (2, n): force rows d/dp
-    pad = lambda a: jnp.concatenate([a, jnp.zeros((2,) + a.shape[1:], dtype)])
-    # the ring's corners, and the border of the two geometric unknowns (diagonal 1 in T)
-    U = [pad(jnp.stack([lower[0] * unit[0, :n], upper[-1] * unit[n - 1, :n]], axis=1)),
-         J_cols - unit[:, n:], unit[:, n:]]
-    V = [pad(jnp.stack([unit[n - 1, :n], unit[0, :n]], axis=1)), unit[:, n:],
-         jnp.concatenate([J_rows.T, jnp.zeros((2, 2), dtype)])]
-    ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
-    if ops:
-        G = _banded.cyclic_diagonals(lambda U_: cells(x[:n], U_), deformation)
-        load = lambda u: reynolds.load_pressure(reynolds.pressure_and_fraction(u, cfg.cavitation, smoothing)[0]
-                                                * pr.p_ref, cfg.cavitation)
-        D = jax.jvp(load, (x[:n],), (jnp.ones(n, dtype),))[1]
-        m = min(cfg.options.krylov_modes, n // 2 - 1)
-        theta, _ = grid(n)
-        k = jnp.arange(2, m + 1)                                  # mode 1 comes from the load
-        basis = jnp.concatenate([jnp.ones((n, 1), dtype), jnp.cos(theta[:, None] * k), jnp.sin(theta[:, None] * k)],
-                                axis=1)
-        weight = jnp.concatenate([jnp.full(1, 1.0 / n), jnp.full(2 * (m - 1), 2.0 / n)]).astype(dtype)
-        symbol = sum(op.symbol for op in ops).at[1].set(0.0)
-        K_basis = jnp.fft.irfft(symbol[:, None] * jnp.fft.rfft(basis, axis=0), n, axis=0)
-        U.append(pad(_banded.cyclic_matvec(G, K_basis * weight)))
-        V.append(pad(D[:, None] * basis))
-    zeros2 = jnp.zeros(2, dtype)
-    tri = (jnp.concatenate([lower, zeros2]), jnp.concatenate([diag, jnp.ones(2, dtype)]),
-           jnp.concatenate([upper.at[-1].set(0.0), zeros2]))
-    solve, solve_transpose = _banded.woodbury(tri, jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1))
-    return solve, solve_transpose, matvec, lambda v: vjp(v)[0]
-
-
-def _staged(pr: _Params, t):
+def _staged(pr: film.Params, t):
     """Problem at continuation parameter t in [0, 2].
 
     t in [0, 1]: compliance ramped in (factor t) at M times the entrainment speed, with M
     such that the rigid bearing runs at eps ~ 0.6 (thick film, mild coupling);
     t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
     """
-    M = jnp.maximum(1.0, _load_number(pr) / reference.half_sommerfeld_load(0.6))
+    M = jnp.maximum(1.0, film.load_number(pr) / reference.half_sommerfeld_load(0.6))
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
     s = jnp.clip(t, 0.0, 1.0)
     scale = lambda op: None if op is None else RingOperator(op.symbol * s, op.n)
@@ -449,7 +249,7 @@ def _continuation(pr, cfg, x0=None):
     call site."""
     n = pr.x0.shape[0] - 2
     dtype = pr.x0.dtype
-    guess = _guess(_staged(pr, 0.0)[0], n, cfg)
+    guess = film.guess(_staged(pr, 0.0)[0], n, cfg)
     DIRECT, FIRST, STEP = 0, 1, 2     # phases: the direct solve, the first stage (t = 0), later stages
 
     def cond(s):
@@ -459,7 +259,7 @@ def _continuation(pr, cfg, x0=None):
     def body(s):
         phase, t, dt, x, its, nst, _, _ = s
         t1 = jnp.where(phase == DIRECT, 2.0, jnp.where(phase == FIRST, 0.0, jnp.minimum(t + dt, 2.0)))
-        x1, st = _newton(jnp.where(phase == FIRST, guess, x), _staged(pr, t1)[0], cfg)
+        x1, st = film.newton(jnp.where(phase == FIRST, guess, x), _staged(pr, t1)[0], cfg)
         ok = st.converged
         grown = jnp.where(phase == STEP, jnp.minimum(1.5 * dt, 0.5), dt)
         return (jnp.where(phase == DIRECT, FIRST, STEP), jnp.where(ok, t1, t),
@@ -477,19 +277,19 @@ def _continuation(pr, cfg, x0=None):
     return x, _solve.Stats(its, stats.residual, result), nst
 
 
-def _jfo_start(x, pr: _Params, cfg: _Config):
+def _jfo_start(x, pr: film.Params, cfg: film.Config):
     """JFO unknowns from a Reynolds solution x: its pressure where positive; in the cavity the
     film fraction that carries the flow leaving the pressurized film (the flux at the
     pressure peak) as a Couette flow, f = Q / (v h), as the universal variable f - 1."""
     n = x.shape[0] - 2
-    f = _fields(x, pr, dataclasses.replace(cfg, cavitation="reynolds"))
+    f = film.fields(x, pr, dataclasses.replace(cfg, cavitation="reynolds"))
     flow = f["q"][jnp.argmax(f["p"])]
     fraction = jnp.clip(flow / (pr.v * f["h"]), 0.0, 1.0)
     cavity = f["p"] <= 1e-9 * jnp.max(f["p"])
     return x.at[:n].set(jnp.where(cavity, fraction - 1.0, x[:n]))
 
 
-def _solver(pr: _Params, cfg: _Config):
+def _solver(pr: film.Params, cfg: film.Config):
     """Steady solution; "jfo" starts from the Reynolds solution (the same pressure where the
     film re-forms only at the groove), whose cavity it fills with the mass-conserving film."""
     if cfg.cavitation != "jfo":
@@ -511,7 +311,7 @@ def _solver(pr: _Params, cfg: _Config):
 
     def body(s):
         i, x, its, _ = s
-        x1, st = _newton(jnp.where(i == 1, x0, x), pr, cfg, schedule[i])
+        x1, st = film.newton(jnp.where(i == 1, x0, x), pr, cfg, schedule[i])
         return i + 1, jnp.where(st.result == _solve.NONFINITE, x, x1), its + st.iterations, st
 
     stats0 = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
@@ -521,26 +321,26 @@ def _solver(pr: _Params, cfg: _Config):
     return x, (_solve.Stats(st_r.iterations + st.iterations, st.residual, result), stages)
 
 
-def _solve_steady(pr: _Params, cfg: _Config):
+def _solve_steady(pr: film.Params, cfg: film.Config):
     compliant = pr.op_B is not None or pr.op_J is not None
     x0 = jax.lax.stop_gradient(pr.x0)
     strategy = cfg.options.strategy if compliant else "newton"
     if strategy == "newton":
-        x, stats = _newton(x0, pr, cfg)
+        x, stats = film.newton(x0, pr, cfg)
         stages = jnp.asarray(0)
     else:
         x, stats, stages = _continuation(pr, cfg, x0 if strategy == "auto" else None)
     # the residual of the target problem at the returned point (after a failed
     # continuation x belongs to an intermediate stage)
-    r = jnp.max(jnp.abs(_equations(x, pr, cfg)[0]))
+    r = jnp.max(jnp.abs(film.equations(x, pr, cfg)[0]))
     residual = jnp.where(jnp.isfinite(r), r, jnp.inf)
     result = jnp.where(stats.converged & ~(residual <= cfg.tol), _solve.MAX_ITERATIONS, stats.result)
     return x, (_solve.Stats(stats.iterations, residual, result), stages)
 
 
-def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
+def _outputs(x, pr: film.Params, cfg: film.Config, stats, stages):
     n = x.shape[0] - 2
-    f = _fields(x, pr, cfg)
+    f = film.fields(x, pr, cfg)
     p, h, hf, dpds, th, dth = f["p"], f["h"], f["hf"], f["dpds"], f["theta"], f["dth"]
     R, RJ, eta, c = pr.R, pr.RJ, pr.eta, pr.c
     eps, phi = x[n], x[n + 1]
@@ -557,7 +357,7 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
     CJ = RJ * R * dth * jnp.sum(tauJ) + CvJ
     # pressure force on the journal in the line-of-centres frame (th: angles from it); the
     # housing gets minus it
-    off = _offset(x, cfg)
+    off = film.offset(x, cfg)
     th = th - off
     Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
     Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
@@ -571,7 +371,7 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
         film_fraction=f["fraction"], force=force,
         torque=CB, torque_shaft=CJ, torque_shaft_about_O=CJ + eps * c * Fy, torque_viscoelastic=CvB,
         torque_viscoelastic_shaft=CvJ, friction_radius=jnp.abs(CB) / jnp.hypot(Fx, Fy), eccentricity=eps,
-        eccentricity_effective=_effective_eps(h, c, off), attitude_angle=phi,
+        eccentricity_effective=film.effective_eps(h, c, off), attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * gamma)), min_film=jnp.min(h),
         # half-Sommerfeld: the zero crossing of the unclipped (full-Sommerfeld) pressure
         rupture_angle=reynolds.rupture_angle(p, th, pr.v, "sommerfeld" if cfg.cavitation == "half_sommerfeld"
@@ -582,13 +382,13 @@ def _outputs(x, pr: _Params, cfg: _Config, stats, stages):
 
 
 @partial(jax.jit, static_argnums=(1,))
-def _run(pr: _Params, cfg: _Config):
-    residual = lambda x, aux, prm: _equations(x, prm, cfg)[0]
+def _run(pr: film.Params, cfg: film.Config):
+    residual = lambda x, aux, prm: film.equations(x, prm, cfg)[0]
     linear_solver = None
     if cfg.options.krylov:
         def linear_solver(x, aux, prm):
-            solve, solve_t, matvec, matvec_t = _linear_model(x, prm, cfg)
-            return _gmres(matvec, solve), _gmres(matvec_t, solve_t)
+            solve, solve_t, matvec, matvec_t = film.linear_model(x, prm, cfg)
+            return film.gmres(matvec, solve), film.gmres(matvec_t, solve_t)
     x, (stats, stages) = _solve.implicit_root(lambda prm: _solver(prm, cfg), residual, linear_solver)(pr)
     return _outputs(x, pr, cfg, stats, stages)
 
@@ -648,16 +448,20 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
             tilt=tilt, temperature=temperature, shift=shift, initial=initial, throw=throw,
             options=journal_finite.FiniteJournalOptions() if options == JournalOptions() else options)
     groove = "line_of_centres" if groove is None else groove
-    pr, cfg, housing, shaft = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
-                                     load_angle, memory, cavitation, supply_angle, supply_pressure, temperature,
-                                     shift, options, groove)
+    _checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
+    pr, cfg, housing, shaft = film.setup(
+        R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+        omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
+        supply_angle=supply_angle, supply_pressure=supply_pressure, temperature=temperature, shift=shift,
+        options=options, groove=groove)
     n, p_ref, dtype = options.n, pr.p_ref, pr.x0.dtype
     if initial is not None:
         if not isinstance(initial, JournalResult) or any(a.shape != (n,) for a in (initial.pressure,
                                                                                    initial.film_fraction)):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
-        x0 = _start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref)
-    elif options.strategy == "auto" and n >= (NESTED_MIN_N if housing is not None or shaft is not None else NESTED_MIN_N_RIGID) and n % 4 == 0:
+        x0 = film.start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref)
+    elif options.strategy == "auto" and n % 4 == 0 and n >= (NESTED_MIN_N if housing is not None or shaft is not None
+                                                             else NESTED_MIN_N_RIGID):
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
         # cold start are spent far from the solution, where a coarse grid is as good and
         # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
@@ -666,22 +470,15 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, groove=groove,
             options=dataclasses.replace(options, n=n // 4), throw=False)
-        x0 = _start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref)
+        x0 = film.start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref)
     else:
-        x0 = _guess(pr, n, cfg)
+        x0 = film.guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
     # the hint only for a failure it can explain (concrete values; its eager operations
     # would otherwise compile on every first call)
     failed = throw and _checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
     _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
     return sol
-
-
-@jax.jit
-def _start(pressure, film_fraction, eccentricity, attitude_angle, p_ref):
-    """Unknowns from a solution: p / p_ref plus, in a "jfo" cavity, film fraction - 1 (the
-    universal variable), then eps and the attitude angle."""
-    return jnp.concatenate([pressure / p_ref + (film_fraction - 1.0), jnp.stack([eccentricity, attitude_angle])])
 
 
 @partial(jax.jit, static_argnums=1)
@@ -699,7 +496,7 @@ def _refine_periodic(values, n):
     return jnp.maximum(p, 0.0)
 
 
-def _failure_hint(pr: _Params, n: int) -> str:
+def _failure_hint(pr: film.Params, n: int) -> str:
     """A note for the failure message when the bodies make the problem one this solver is not
     built for: their deformation under the load dwarfs the clearance (mode 2, the first that
     changes the film's shape, of the mean pressure W/(2R)), or the load far exceeds the rigid
@@ -714,7 +511,7 @@ def _failure_hint(pr: _Params, n: int) -> str:
                 f"soft conformal contact, beyond this Newton solver's reach and, past strains of a few percent, "
                 f"beyond linear viscoelasticity; stiffer bodies, a larger clearance or a smaller load)")
     # rigid half-Sommerfeld film at this load: G ~ 1 / (3 (1 - eps)) for eps -> 1
-    G = float(_load_number(pr))
+    G = float(film.load_number(pr))
     thin = 1.0 / (3.0 * G)
     cause = (f" (the load is {G:.2g} times the rigid film's capacity scale: a rigid bearing would run at a film of "
              f"~{thin:.1e} c, so the bodies carry the load through an elastohydrodynamic film far thinner than "
@@ -730,64 +527,3 @@ def _failure_hint(pr: _Params, n: int) -> str:
     return ""
 
 
-def _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
-           cavitation, supply_angle, supply_pressure, temperature, shift, options, groove="line_of_centres"):
-    """Checked arguments of :func:`journal_bearing` -> (parameters with a zero start, config,
-    housing body, shaft body) - the bodies at ``temperature``, None when rigid."""
-    housing = as_body("housing", housing, hole, HOUSINGS)
-    shaft = as_body("shaft", shaft, disc, SHAFTS)
-    _checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
-    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
-    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
-                   supply_angle=supply_angle)
-    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
-    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
-    _checks.one_of("groove", groove, GROOVES)
-    memory_revolutions(memory)
-    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
-    if Rv is not None and cv is not None and not np.all(cv < Rv):
-        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
-    _checks.load(load)
-    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
-    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
-        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
-                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
-    sa = _checks.values("supply_angle", supply_angle)
-    if sa is None:
-        raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
-    check_fits("housing", housing, R)
-    check_fits("shaft", shaft, R - radial_clearance)
-    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
-    n = options.n
-    dtype = jnp.result_type(float)
-    floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
-    tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
-    cfg = _Config(cavitation, options, float(tol), groove == "fixed")
-
-    groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
-    pr = _params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure,
-                 groove_cell, housing, shaft, n=n, memory=memory)
-    return pr, cfg, housing, shaft
-
-
-@partial(jax.jit, static_argnames=("n", "memory"))
-def _params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure, groove,
-            housing, shaft, *, n, memory):
-    """Checked arguments -> :class:`_Params` with a zero start, in one compiled program (built
-    eagerly, its few dozen scalar and grid operations would each compile on a first call,
-    together about as long as the solver itself)."""
-    dtype = jnp.result_type(float)
-    f = lambda v: jnp.asarray(v, dtype)
-    load = f(load)
-    Wx, Wy = (load * jnp.cos(load_angle), load * jnp.sin(load_angle)) if load.ndim == 0 else (load[0], load[1])
-    W = jnp.hypot(Wx, Wy)
-    eta, c = f(viscosity), f(radial_clearance)
-    v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
-    p_ref = W / (2 * R)
-    return _Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=W, load_angle=jnp.arctan2(Wy, Wx),
-                   ps=f(supply_pressure), groove=jnp.asarray(groove), omega_B=f(omega_housing), omega_J=f(omega_shaft),
-                   p_ref=p_ref, q_ref=c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c,
-                   op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
-                   op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
-                                                                  memory=memory),
-                   x0=jnp.zeros(n + 2, dtype))

@@ -63,8 +63,8 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import _checks, _solve, journal_finite, reynolds
-from .journal import (JournalOptions, JournalResult, _Config, _equations, _newton, _offset, _Params, _setup, _start,
-                      journal_bearing)
+from . import _journal_film as film
+from .journal import JournalOptions, JournalResult, journal_bearing
 from .operator import grid
 
 __all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
@@ -160,7 +160,7 @@ class JournalCoefficients:
         return path
 
 
-def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: _Params, cfg: _Config):
+def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: film.Config):
     """Scaled cell equations (with the groove datum) and the film force on the journal (grid
     axes) for pressure ``pz`` (/p_ref; the universal unknown for "jfo") and its rate
     ``pzdot`` (1/s; a "jfo" cavity's film fraction changes at that rate), body displacement
@@ -175,7 +175,7 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: _Params, cfg: _Conf
     cos, sin = jnp.cos(theta), jnp.sin(theta)
     pz_p, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation)
     p = pz_p * pr.p_ref
-    h = pr.c * (1 - x0[n] * jnp.cos(theta - _offset(x0, cfg))) + U
+    h = pr.c * (1 - x0[n] * jnp.cos(theta - film.offset(x0, cfg))) + U
     if cfg.fixed_groove:
         h = h - motion[0] * cos - motion[1] * sin
         hdot = -motion[2] * cos - motion[3] * sin + Udot
@@ -204,7 +204,7 @@ def _circulant(symbol):
 
 
 @partial(jax.jit, static_argnums=(2,))
-def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
+def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
     """Z(Omega) (complex, (m, 2, 2), absolute frame) about the steady unknowns ``x0``;
     ``bodies``: (housing, R_housing, omega relative to it, shaft, ...) or None entries."""
     n = x0.shape[0] - 2
@@ -254,21 +254,21 @@ def _impedance(x0, pr: _Params, cfg: _Config, bodies, whirl):
         return -dF
 
     Z_grid = jax.vmap(one)(whirl)
-    g = pr.load_angle + phi - _offset(x0, cfg)     # the grid's absolute angle
+    g = pr.load_angle + phi - film.offset(x0, cfg)     # the grid's absolute angle
     R = jnp.array([[jnp.cos(g), -jnp.sin(g)], [jnp.sin(g), jnp.cos(g)]])
     return jnp.einsum("ij,mjk,lk->mil", R, Z_grid, R)
 
 
 @partial(jax.jit, static_argnames="cfg")
-def _linearized(x0, pr: _Params, bodies, whirl, cfg: _Config):
+def _linearized(x0, pr: film.Params, bodies, whirl, cfg: film.Config):
     """(Z, C, Stats of the half-Sommerfeld pressure's solve or None) about the steady unknowns
     ``x0``; one compiled program per configuration (the solve of the unclipped pressure's
     Newton, traced outside jit, compiled anew on every call)."""
     stats = None
     if cfg.cavitation == "half_sommerfeld":     # the result holds the clipped pressure: recover the film's own
         pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0))
-        x0, stats = _solve.implicit_root(lambda prm: _newton(prm.x0, prm, cfg),
-                                         lambda x, aux, prm: _equations(x, prm, cfg)[0])(pr)
+        x0, stats = _solve.implicit_root(lambda prm: film.newton(prm.x0, prm, cfg),
+                                         lambda x, aux, prm: film.equations(x, prm, cfg)[0])(pr)
     # Z and dZ/dOmega (each Z_m depends on Omega_m only): C = Im Z / Omega, or its limit
     # d(Im Z)/dOmega at Omega = 0
     Z, dZ = jax.jvp(lambda w: _impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
@@ -322,10 +322,12 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
                           omega_housing=omega_housing, load_angle=load_angle, memory="periodic",
                           cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
                           groove=groove, temperature=temperature, shift=shift, initial=initial, options=options, throw=throw)
-    pr, cfg, hb, sb = _setup(R, radial_clearance, viscosity, load, housing, shaft, omega_shaft, omega_housing,
-                             load_angle, "periodic", cavitation, supply_angle, supply_pressure, temperature, shift,
-                             options, groove)
-    x0 = _start(sol.pressure, sol.film_fraction, sol.eccentricity, sol.attitude_angle, pr.p_ref)
+    pr, cfg, hb, sb = film.setup(
+        R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
+        omega_housing=omega_housing, load_angle=load_angle, memory="periodic", cavitation=cavitation,
+        supply_angle=supply_angle, supply_pressure=supply_pressure, temperature=temperature, shift=shift,
+        options=options, groove=groove)
+    x0 = film.start(sol.pressure, sol.film_fraction, sol.eccentricity, sol.attitude_angle, pr.p_ref)
     Z, C, stats = _linearized(x0, pr, ((hb, pr.R, -pr.omega_B), (sb, pr.RJ, -pr.omega_J)), whirl, cfg)
     if stats is not None:
         _solve.report("journal_coefficients (half-Sommerfeld pressure)", stats, throw)

@@ -1,0 +1,293 @@
+"""The infinitely long journal bearing's equations: parameters, the film and the bodies'
+deformation on the ring grid, the cell balances with the load balance, the rigid start, and
+Newton on them (dense or matrix-free). :mod:`vjax.journal` solves them for the steady state
+(its module docstring states the equations and conventions), :mod:`vjax.journal_dynamics`
+linearizes them for the dynamic coefficients."""
+from __future__ import annotations
+
+import dataclasses
+import math
+from functools import partial
+from typing import TYPE_CHECKING
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from . import _banded, _checks, _krylov, _scene, _solve, reference, reynolds
+from .bodies import as_body, check_fits, disc, hole
+from .operator import RingOperator, grid, memory_revolutions
+
+if TYPE_CHECKING:
+    from .journal import JournalOptions
+
+HOUSINGS = ("hole", "liner", "half_plane")
+SHAFTS = ("disc", "sleeve", "half_plane")
+GROOVES = ("line_of_centres", "fixed")
+KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Differentiable parameters (SI); the operators are None for rigid bodies."""
+
+    R: jax.Array
+    RJ: jax.Array
+    c: jax.Array
+    eta: jax.Array
+    v: jax.Array                 # entrainment speed (m/s)
+    W: jax.Array                 # load magnitude (N/m)
+    load_angle: jax.Array
+    ps: jax.Array                # groove pressure (Pa)
+    groove: jax.Array            # grid index of the groove's cell (int; traced: a groove moved compiles nothing)
+    omega_B: jax.Array
+    omega_J: jax.Array
+    p_ref: jax.Array
+    q_ref: jax.Array
+    op_B: RingOperator | None
+    op_J: RingOperator | None
+    x0: jax.Array                # starting point: travels with the parameters, not differentiated
+
+
+@dataclasses.dataclass(frozen=True)
+class Config:
+    cavitation: str
+    options: JournalOptions
+    tol: float
+    fixed_groove: bool = False     # grid on the load line (groove fixed in the bearing)
+
+
+def offset(x, cfg: Config):
+    """Angle of the line of centres on the grid: 0 on the line-of-centres grid, the
+    attitude angle on the load-line grid of a fixed groove."""
+    return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
+
+
+def load_number(pr: Params):
+    """G = |W| c^2 / (12 eta |v| R^2): the load over the rigid film's capacity scale (the rigid
+    half-Sommerfeld bearing runs at the eccentricity with this load number)."""
+    return pr.W * pr.c**2 / (12 * pr.eta * jnp.abs(pr.v) * pr.R**2)
+
+
+def gmres(matvec, precond):
+    """b -> the GMRES solution of one Newton (or derivative) system, preconditioned."""
+    return lambda b: _krylov.gmres(matvec, b, precond, KRYLOV_TOL, 200)[0]
+
+
+@partial(jax.jit, static_argnums=(1, 2))
+def guess(pr: Params, n, cfg: Config):
+    """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
+    moved with the bodies' rigid displacement under the load."""
+    v = pr.v
+    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(load_number(pr)), 0.95)
+    phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
+    # The load's mode-1 pressure moves the bodies rigidly by D (complex, m): place the journal
+    # so that the film keeps the rigid estimate's shape and its angle to the load,
+    # c eps e^{i beta} = c eps_r + D e^{i phi_r} = z (beta: angle of the film's minimum from
+    # the line of centres), and let the pressure follow the film.
+    s1 = sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
+    z = pr.c * eps + s1 * pr.W / (pr.R * jnp.pi) * jnp.exp(1j * phi)
+    film_line = phi if cfg.fixed_groove else jnp.angle(z)      # grid angle of the film's minimum
+    theta = grid(n)[0] - film_line
+    p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
+         / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
+    eps, phi = jnp.abs(z) / pr.c, phi - jnp.angle(z)
+    # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
+    # Newton step can only grow the pressurized zone by one cell per iteration.
+    p = jnp.maximum(p, 0.0) / pr.p_ref + 0.1
+    return jnp.concatenate([p, jnp.stack([eps, phi])])
+
+
+def fields(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
+    """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
+    "jfo" switch, see :func:`_solver`; ``deformation``: u_B + u_J given instead of computed,
+    for the Newton preconditioner)."""
+    n = x.shape[0] - 2
+    theta, alpha = grid(n)
+    pz, fraction = reynolds.pressure_and_fraction(x[:n], cfg.cavitation, smoothing)
+    p = pz * pr.p_ref
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    # Mode 1 of the loading pressure is the film force, which equals the load at equilibrium:
+    # take it from the load (it moves the bodies rigidly, by up to hundreds of clearances for a
+    # soft bore) so that Newton does not have to find it - the same root, a far milder system.
+    zero = jnp.zeros_like(p)
+    if deformation is not None:
+        uB, uJ = deformation, zero
+    else:
+        P = jnp.fft.rfft(p_load)
+        P = P.at[1].set(pr.W * jnp.exp(-1j * (offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
+        deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
+        uB = zero if pr.op_B is None else deform(pr.op_B)
+        uJ = zero if pr.op_J is None else deform(pr.op_J)
+    h = pr.c * (1 - x[n] * jnp.cos(theta - offset(x, cfg))) + uB + uJ
+    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
+    return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
+                fraction=fraction)
+
+
+def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
+    """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
+    n = x.shape[0] - 2
+    f = fields(x, pr, cfg, smoothing, deformation)
+    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
+    r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
+    Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
+    Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
+    # the film balances the load, which points along the grid angle offset - attitude
+    a = offset(x, cfg) - x[n + 1]
+    bal = jnp.stack([Fx / pr.W + jnp.cos(a), Fy / pr.W + jnp.sin(a)])
+    return jnp.concatenate([r, bal]), jnp.min(f["h"])
+
+
+def effective_eps(h, c, offset=0.0):
+    """First Fourier mode of the film over c along the line of centres (at grid angle ``offset``)."""
+    theta, _ = grid(h.shape[0])
+    a1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.cos(theta - offset))
+    b1 = 2.0 / h.shape[0] * jnp.sum(h * jnp.sin(theta - offset))
+    return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
+
+
+def newton(x0, pr, cfg, smoothing=0.0):
+    """The core's Newton on the equations (films must stay positive): x, Stats (with the
+    physical branch folded into the result)."""
+    def fn(x, state):
+        r, hmin = equations(x, pr, cfg, smoothing)
+        return r, state, hmin > 0
+
+    n = x0.shape[0] - 2
+    # a trust cap on the two geometric unknowns (eps, attitude)
+    cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    linear_solve = None
+    if cfg.options.krylov:
+        def linear_solve(x, state, r):
+            solve, _, matvec, _ = linear_model(x, pr, cfg, smoothing)
+            return gmres(matvec, solve)(-r)
+    x, _, stats = _solve.newton(fn, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
+                                linear_solve=linear_solve)
+    physical = effective_eps(fields(x, pr, cfg)["h"], pr.c, offset(x, cfg)) > 0
+    result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
+    return x, _solve.Stats(stats.iterations, stats.residual, result)
+
+
+def linear_model(x, pr: Params, cfg: Config, smoothing=0.0):
+    """The Newton system at x, matrix-free: ``(solve, solve_transpose, matvec, matvec_transpose)``,
+    the solves those of a preconditioner M ~ J, O(n k) per application.
+
+    J = A + G K D in the cell rows, plus the rows and columns of (eps, attitude): A and G the
+    derivatives of the cell equations with respect to the pressure (the film held) and to the
+    deformation (cyclic tridiagonal: a cell sees its neighbours' faces), K the bodies'
+    compliance (circulant), D the derivative of the loading pressure (diagonal). M keeps K on
+    its lowest ``krylov_modes`` Fourier modes, which carry most of a body's compliance
+    (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax._banded`).
+    For rigid bodies M = J exactly: GMRES converges in one step."""
+    n = x.shape[0] - 2
+    N, dtype = n + 2, x.dtype
+    f = fields(x, pr, cfg, smoothing)
+    deformation = f["uB"] + f["uJ"]
+    cells = lambda u, U: equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U)[0][:n]
+    lower, diag, upper = _banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
+    full = lambda y: equations(y, pr, cfg, smoothing)[0]
+    _, matvec = jax.linearize(full, x)
+    _, vjp = jax.vjp(full, x)
+    unit = jnp.eye(N, dtype=dtype)
+    J_cols = jax.vmap(matvec)(unit[n:]).T                    # (N, 2): d/d(eps, attitude)
+    J_rows = jax.vmap(lambda c: vjp(c)[0])(unit[n:])[:, :n]    # (2, n): force rows d/dp
+    pad = lambda a: jnp.concatenate([a, jnp.zeros((2,) + a.shape[1:], dtype)])
+    # the ring's corners, and the border of the two geometric unknowns (diagonal 1 in T)
+    U = [pad(jnp.stack([lower[0] * unit[0, :n], upper[-1] * unit[n - 1, :n]], axis=1)),
+         J_cols - unit[:, n:], unit[:, n:]]
+    V = [pad(jnp.stack([unit[n - 1, :n], unit[0, :n]], axis=1)), unit[:, n:],
+         jnp.concatenate([J_rows.T, jnp.zeros((2, 2), dtype)])]
+    ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
+    if ops:
+        G = _banded.cyclic_diagonals(lambda U_: cells(x[:n], U_), deformation)
+        load = lambda u: reynolds.load_pressure(reynolds.pressure_and_fraction(u, cfg.cavitation, smoothing)[0]
+                                                * pr.p_ref, cfg.cavitation)
+        D = jax.jvp(load, (x[:n],), (jnp.ones(n, dtype),))[1]
+        m = min(cfg.options.krylov_modes, n // 2 - 1)
+        theta, _ = grid(n)
+        k = jnp.arange(2, m + 1)                                  # mode 1 comes from the load
+        basis = jnp.concatenate([jnp.ones((n, 1), dtype), jnp.cos(theta[:, None] * k), jnp.sin(theta[:, None] * k)],
+                                axis=1)
+        weight = jnp.concatenate([jnp.full(1, 1.0 / n), jnp.full(2 * (m - 1), 2.0 / n)]).astype(dtype)
+        symbol = sum(op.symbol for op in ops).at[1].set(0.0)
+        K_basis = jnp.fft.irfft(symbol[:, None] * jnp.fft.rfft(basis, axis=0), n, axis=0)
+        U.append(pad(_banded.cyclic_matvec(G, K_basis * weight)))
+        V.append(pad(D[:, None] * basis))
+    zeros2 = jnp.zeros(2, dtype)
+    tri = (jnp.concatenate([lower, zeros2]), jnp.concatenate([diag, jnp.ones(2, dtype)]),
+           jnp.concatenate([upper.at[-1].set(0.0), zeros2]))
+    solve, solve_transpose = _banded.woodbury(tri, jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1))
+    return solve, solve_transpose, matvec, lambda v: vjp(v)[0]
+
+
+def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
+          cavitation, supply_angle, supply_pressure, temperature, shift, options: JournalOptions,
+          groove="line_of_centres"):
+    """Checked arguments of :func:`vjax.journal_bearing` (``options`` a checked
+    :class:`~vjax.JournalOptions`) -> (parameters with a zero start, config, housing body,
+    shaft body) - the bodies at ``temperature``, None when rigid."""
+    housing = as_body("housing", housing, hole, HOUSINGS)
+    shaft = as_body("shaft", shaft, disc, SHAFTS)
+    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
+    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
+                   supply_angle=supply_angle)
+    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
+    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    _checks.one_of("groove", groove, GROOVES)
+    memory_revolutions(memory)
+    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    if Rv is not None and cv is not None and not np.all(cv < Rv):
+        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
+    _checks.load(load)
+    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
+        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
+                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
+    sa = _checks.values("supply_angle", supply_angle)
+    if sa is None:
+        raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
+    check_fits("housing", housing, R)
+    check_fits("shaft", shaft, R - radial_clearance)
+    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
+    n = options.n
+    dtype = jnp.result_type(float)
+    floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
+    tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
+    cfg = Config(cavitation, options, float(tol), groove == "fixed")
+
+    groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
+    pr = params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure,
+                groove_cell, housing, shaft, n=n, memory=memory)
+    return pr, cfg, housing, shaft
+
+
+@partial(jax.jit, static_argnames=("n", "memory"))
+def params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure, groove,
+           housing, shaft, *, n, memory):
+    """Checked arguments -> :class:`Params` with a zero start, in one compiled program (built
+    eagerly, its few dozen scalar and grid operations would each compile on a first call,
+    together about as long as the solver itself)."""
+    dtype = jnp.result_type(float)
+    f = lambda v: jnp.asarray(v, dtype)
+    load = f(load)
+    Wx, Wy = (load * jnp.cos(load_angle), load * jnp.sin(load_angle)) if load.ndim == 0 else (load[0], load[1])
+    W = jnp.hypot(Wx, Wy)
+    eta, c = f(viscosity), f(radial_clearance)
+    v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
+    p_ref = W / (2 * R)
+    return Params(R=f(R), RJ=f(R - radial_clearance), c=c, eta=eta, v=f(v), W=W, load_angle=jnp.arctan2(Wy, Wx),
+                  ps=f(supply_pressure), groove=jnp.asarray(groove), omega_B=f(omega_housing), omega_J=f(omega_shaft),
+                  p_ref=p_ref, q_ref=c**3 * p_ref / (12 * eta * R) + jnp.abs(v) * c,
+                  op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
+                  op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
+                                                                 memory=memory),
+                  x0=jnp.zeros(n + 2, dtype))
+
+
+@jax.jit
+def start(pressure, film_fraction, eccentricity, attitude_angle, p_ref):
+    """Unknowns from a solution: p / p_ref plus, in a "jfo" cavity, film fraction - 1 (the
+    universal variable), then eps and the attitude angle."""
+    return jnp.concatenate([pressure / p_ref + (film_fraction - 1.0), jnp.stack([eccentricity, attitude_angle])])
