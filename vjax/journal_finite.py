@@ -241,7 +241,7 @@ def _guess(pr: Params, cfg: Config):
     phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
     # the load direction in the grid, and the journal at phi ahead of it (behind for v < 0)
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
-    n, m = cfg.n, cfg.m
+    n = cfg.n
     theta, _ = grid(n)
     z = 0.5 * L * pr.s[1:-1]
     t = theta - a
@@ -319,7 +319,6 @@ def _steady(pr: Params, cfg: Config):
 def _outputs(x, pr: Params, cfg: Config, stats):
     f = fields(x, pr, cfg)
     n = cfg.n
-    N = _unknowns(cfg)
     R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
     dth = 2 * jnp.pi / n
     wz = _film2d.node_widths(z)
