@@ -29,7 +29,7 @@ import numpy as np
 from vjax import _checks
 from vjax.material import Material
 
-from . import dma, evaluate, io, master, prony, relaxation, spectrum
+from . import compact, dma, evaluate, io, master, prony, relaxation, spectrum
 from .evaluate import tensile_over_shear
 
 __all__ = ["calibrate", "Report"]
@@ -180,24 +180,49 @@ def _smooth_fits(table, start, nu, per_decade, max_terms):
     per-sweep table, then WLF and Arrhenius refined end to end with that weight from the table
     fit. Returns ({law: PronyFit}, info of the table fit).
 
-    A term cap that makes the grid coarser than one time per decade cannot give a smooth loss
-    modulus (each arm's loss peak is about a decade wide, so sparse arms show as bumps); the
-    capped frequency fit then frees the relaxation times (:func:`fitting.prony.refine`), which
-    is what keeps its error small."""
+    A term cap that would make the grid coarser than one time per decade cannot give a smooth
+    loss modulus (each arm's loss peak is about a decade wide, so sparse arms show as bumps);
+    frequency data then get ``max_terms`` free relaxation times (:func:`_few_terms`)."""
     data = spectrum.SmoothData.from_table(table)
-    opts = dict(per_decade=per_decade, max_terms=max_terms, weights=WEIGHTS, robust=ROBUST, nu=nu)
+    opts = dict(per_decade=per_decade, weights=WEIGHTS, robust=ROBUST, nu=nu)
+    few = data.domain == "frequency" and max_terms is not None
     # relaxation curves: the per-sweep factors stay those of the overlap (see smooth_fit)
-    f_tab, info = spectrum.smooth_fit(data, start, fit_shift=data.domain == "frequency", **opts)
+    fit_shift = data.domain == "frequency"
+    f_tab, info = spectrum.smooth_fit(data, start, fit_shift=fit_shift, max_terms=None if few else max_terms, **opts)
+    g = info["grid"]
+    if few and len(g) > max_terms and (g[-1] - g[0]) / (max_terms - 1) <= 1.0:     # a dense capped grid
+        few = False
+        f_tab, info = spectrum.smooth_fit(data, start, fit_shift=fit_shift, max_terms=max_terms, **opts)
+    few = few and len(g) > max_terms
     fits = {"table": f_tab}
     for name in CLOSED_FORM:
         guess, _ = master.fit_law(f_tab.shift, name)
         fits[name], _ = spectrum.smooth_fit(data, guess, lam=info["lam"], start=f_tab, grid=info["grid"], **opts)
-    sparse = len(info["grid"]) > 1 and (info["grid"][1] - info["grid"][0]) > 1.0
-    if sparse and data.domain == "frequency":
-        free = dict(max_iter=300, weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=TAU_MARGIN)
-        fits = {k: prony.refine(table, f.material, f.shift, **free) for k, f in fits.items()}
+    if few:
+        fits = {k: _few_terms(table, f, max_terms) for k, f in fits.items()}
         info = dict(info, free_times=True)
     return fits, info
+
+
+def _few_terms(table, fit, n):
+    """``n`` terms with free relaxation times from the smooth ``fit``: :func:`fitting.compact.fit_terms`
+    to the points under the fit's law (times within the data's reduced-time window plus
+    ``compact.MARGIN_DECADES``), refined end to end with the law (:func:`fitting.prony.refine`,
+    same window). Two starts, times log-spaced from edge to edge of the window and at the
+    centres of n equal cells of it; the lower cost is kept (the refinement has local minima,
+    some 20 % apart in loss error)."""
+    wr = table.omega * 10.0 ** evaluate.log10_aT(fit.shift, table.T)
+    m = fit.material
+    full = compact.Series(float(m.E0), np.asarray(m.moduli), np.asarray(m.times))
+    lo, hi = -math.log10(wr.max()), -math.log10(wr.min())
+    best = None
+    for times in (None, 10.0 ** (lo + (hi - lo) * (np.arange(n) + 0.5) / n)):
+        s = compact.fit_terms(full, n, (wr.min(), wr.max()), target=(wr, table.storage, table.loss), times=times,
+                              **compact.DATA_FIT)
+        f = prony.refine(table, Material.prony(s.E0, s.moduli, s.times, m.nu), fit.shift, max_iter=300,
+                         weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=compact.MARGIN_DECADES)
+        best = f if best is None or f.rms < best.rms else best
+    return best
 
 
 def _law_distance(law, table_law, temperatures) -> dict:
@@ -225,7 +250,9 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
       method: 'smooth' (relaxation times on a fixed grid at ``per_decade``, smoothness penalty
         chosen by GCV: a loss modulus without ringing, :mod:`fitting.spectrum`) or 'free'
         (free relaxation times, their number by BIC: fewer terms; frequency data only).
-      max_terms: cap on the number of Prony terms ('smooth': the grid gets coarser).
+      max_terms: cap on the number of Prony terms ('smooth': the grid gets coarser; where that
+        would leave less than one time per decade, frequency data get ``max_terms`` free times
+        fitted to the points from the uncapped smooth fit and refined end to end).
       densities: relaxation times per decade tried by the BIC of method 'free'.
     Returns ``(Material, shift, Report)``; the material's moduli are in Pa (tensile E unless
     the data are shear and ``tensile=False``), times in s, at T_ref.

@@ -138,7 +138,7 @@ def _kernel(kind, x, tau):
 
 
 def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, target=None,
-              robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100) -> Series:
+              robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100, times=None) -> Series:
     """The ``n``-term series (plus a long-term modulus E0) closest in log modulus to
     ``target``: the DMA points under the material's shift law, (omega, storage, loss) (reduced
     rad/s, Pa) or ('time', t, E) (reduced s, Pa); without it ``full``'s storage and loss over
@@ -146,9 +146,12 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
     [1/omega_max, 1/omega_min] widened by ``margin`` decades (module docstring). ``robust``:
     scale (decades) of the Cauchy loss on the data's residuals (0: least squares), as the
     calibration's (a few inconsistent points do not bend the series); ``weights``: of the
-    storage and loss residuals."""
+    storage and loss residuals. ``times``: the ``n`` starting relaxation times (s), default
+    log-spaced from 1/omega_max to 1/omega_min."""
     if not (isinstance(n, int) and n >= 1):
         raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
+    if times is not None and not (np.shape(times) == (n,) and np.all(np.asarray(times, float) > 0)):
+        raise ValueError(f"times must be {n} positive relaxation times (s), got {times!r}")
     lo, hi = (float(v) for v in window)
     if not (0 < lo < hi and math.isfinite(hi)):
         raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
@@ -163,7 +166,8 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         parts = [("storage", w, st, weights[0]), ("loss", w, ls, weights[1])]
     scale = float(max(np.max(p[2]) for p in parts))
     lt_lo, lt_hi = -math.log(hi) - margin * LN10, -math.log(lo) + margin * LN10
-    ltau = np.linspace(-math.log(hi), -math.log(lo), n) if n > 1 else np.array([-0.5 * math.log(lo * hi)])
+    ltau = (np.log(np.asarray(times, float)) if times is not None else
+            np.linspace(-math.log(hi), -math.log(lo), n) if n > 1 else np.array([-0.5 * math.log(lo * hi)]))
     # start: non-negative moduli at these times (relative residuals)
     rows = []
     for kind, x, y, _ in parts:

@@ -340,6 +340,10 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     wr = np.asarray(table.omega) * 10.0 ** evaluate.log10_aT(shift, table.T)
     lt_lo = -math.log(wr.max()) - tau_margin * LN10
     lt_hi = -math.log(wr.min()) + tau_margin * LN10
+    # start inside the bounds: a start outside pays a penalty that can outweigh the (robust,
+    # hence nearly flat for large errors) data cost, and the first steps then give up the fit
+    # to remove it (a 20-term grid with a decade of margin collapsed to 2 terms, 18 decades off)
+    x0[Kp + 1:Kp + K + 1] = np.clip(x0[Kp + 1:Kp + K + 1], lt_lo, lt_hi)
     data = (jnp.asarray(table.omega), jnp.asarray(table.set), jnp.log10(jnp.asarray(table.storage) / scale),
             jnp.log10(jnp.asarray(table.loss) / scale), jnp.asarray(T_sets, float), jnp.asarray(T_ref),
             jnp.asarray(c2min), jnp.asarray(weights, float), jnp.asarray(lt_lo), jnp.asarray(lt_hi),
