@@ -41,6 +41,18 @@ LS-DYNA's Phi multiplies the time step (t' = int Phi dt) where Abaqus divides by
 writing A = C1 would shift by ln instead of log10 and in the wrong direction) and B = C2.
 Its keyword reads at most six GI/BETAI cards, G_inf included (:data:`CARD_LIMIT`).
 
+Where each convention comes from, and what was checked (docs/fem_export.md has the detail):
+LS-DYNA Keyword User's Manual, vol. II, ``*MAT_GENERAL_VISCOELASTIC`` (``*MAT_076``), card 1
+and remarks: the layout (MID RO BULK PCF EF TREF A B / LCID NT BSTART TRAMP LCIDK NTK BSTARTK
+TRAMPK / up to six GI BETAI KI BETAKI) and the meaning of TREF, A, B are confirmed by
+OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg``; the shift
+formula Phi = exp(-A (T - TREF)/(B + T - TREF)) (natural exponential) and its Arrhenius form
+(B = 0) were NOT found as quoted manual text and are taken from issue 26: check a written card
+with the check values in its header on the solver. ANSYS Mechanical APDL Command Reference
+``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift Functions": the WLF
+field order is confirmed by pyvisco's ANSYS card ``tests/data/E1_WLF.USER_MPL``; the base 10
+of its logarithm and the two TN constants (Tr, H/R) are not confirmed by quoted text.
+
 Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
 terms, at most 20, whose medians on the DMA data stay within 1.5x of the full fit's. A code
 with a card limit gets the best series of that many terms over the user's working window
