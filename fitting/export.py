@@ -47,7 +47,7 @@ and remarks: the layout (MID RO BULK PCF EF TREF A B / LCID NT BSTART TRAMP LCID
 TRAMPK / up to six GI BETAI KI BETAKI) and the meaning of TREF, A, B are confirmed by
 OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg``; the shift
 formula Phi = exp(-A (T - TREF)/(B + T - TREF)) (natural exponential) and its Arrhenius form
-(B = 0) were NOT found as quoted manual text and are taken from issue 26: check a written card
+(B = 0) were NOT found as quoted manual text (they are the form commonly quoted for MAT_076): check a written card
 with the check values in its header on the solver. ANSYS Mechanical APDL Command Reference
 ``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift Functions": the WLF
 field order is confirmed by pyvisco's ANSYS card ``tests/data/E1_WLF.USER_MPL``; the base 10
