@@ -143,7 +143,7 @@ def main(out_dir="experiments/out", quick=False):
                       comments=[f"rigid long bearing, pi film, n = {n}; line-of-centres frame; K in 1e9 N/m^2, "
                                 "C in 1e6 N s/m^2; errors: max |vjax - closed form| / max |closed form|"])
     whirl = np.logspace(0, 4, 9 if quick else 17)
-    load, liner = liner_sweep(128 if quick else 256, whirl)
+    load, liner = liner_sweep(64 if quick else 256, whirl)
     for name, co in liner.items():
         co.save_csv(out / f"dynamics_{'rigid_table' if name == 'rigid' else 'liner'}.csv", length=LENGTH)
     thresholds = {name: vjax.stability_threshold(co, length=LENGTH) for name, co in liner.items()}
@@ -156,7 +156,7 @@ def main(out_dir="experiments/out", quick=False):
           [(f"R = 50 mm, c = 50 µm, 100 rad/s, load {load:.3g} N/m: rigid (dashed) and a 2 mm polymer liner",
             [("rigid", liner["rigid"], "--"), ("liner", liner["polymer liner 2 mm"], "-")]),
            ("thesis HS case (SLS bore, ω_B = 0.2, ω_J = -0.4 rad/s)", [("thesis", thesis, "-")])])
-    jfo = jfo_against_reynolds(128 if quick else 256, np.concatenate([[0.0], np.logspace(-1, 3, 9 if quick else 17)]))
+    jfo = jfo_against_reynolds(64 if quick else 256, np.concatenate([[0.0], np.logspace(-1, 3, 9 if quick else 17)]))
     _plot_jfo(out / "dynamics_jfo.png", jfo)
     lines = [f"Rigid long bearing, pi film, n = {n}: max relative error against the closed forms "
              f"K {max(r[-2] for r in rigid):.2e}, C {max(r[-1] for r in rigid):.2e} (eps {rigid[0][0]}..{rigid[-1][0]})",

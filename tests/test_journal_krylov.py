@@ -63,7 +63,7 @@ def test_implicit_derivatives_match_dense(case):
     base = dict(CASES[case])
     # Newton starts from the steady solution: the derivatives are implicit, at the root, so the
     # start does not enter them
-    start = journal_bearing(**base, options=JournalOptions(n=N))
+    start = solve(case, "dense")   # the program test_same_solution_as_dense compiled (same options)
 
     def out(params, solver):
         kw = dict(base, viscosity=params[0], load=params[1])

@@ -83,10 +83,14 @@ def test_memory_models_agree_slowly_and_part_fast():
 
 
 def test_grid_convergence():
-    ref = solve(1.0, n=8192)
-    errs = [abs(float(solve(1.0, n=n).torque - ref.torque)) for n in (256, 512, 1024, 2048)]
-    order = -np.polyfit(np.log([256, 512, 1024, 2048]), np.log(errs), 1)[0]
-    assert order > 0.9, (errs, order)
+    """First order at least: with an error C n^-p the differences between successive
+    doublings are C (1 - 2^-p) n^-p and fall at the same rate, so no n = 8192 reference is
+    needed (measured p = 1.0)."""
+    ns = (256, 512, 1024, 2048)
+    torques = [float(solve(1.0, n=n).torque) for n in ns]
+    steps = np.abs(np.diff(torques))
+    order = -np.polyfit(np.log(ns[:-1]), np.log(steps), 1)[0]
+    assert order > 0.9, (torques, order)
 
 
 def test_gradients_match_central_differences():
