@@ -422,7 +422,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       supply_pressure: groove gauge pressure (Pa, default 0).
       groove: "line_of_centres" (the groove turns with it, the classical theory; the default
         of the infinitely long bearing) or "fixed" (in the bearing, as in a real bearing; the
-        only groove of a finite one); see the module docstring.
+        default of a finite one, which also takes "circumferential": a groove round the
+        mid-width at ``supply_pressure``); see the module docstring.
       temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``.
       initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
       options: :class:`JournalOptions` (grid, tolerance, iteration caps, strategy; static).
@@ -431,9 +432,11 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       length: axial length L (m) of a finite bearing (None: infinitely long, per unit length).
         With it the film covers the land (:mod:`vjax.journal_finite`): ``load`` is the total
         (N), the groove is fixed in the bearing at ``supply_angle`` from the load (None: no
-        groove) over the central fraction ``supply_width`` of L, the journal may be tilted by
+        groove) over the central fraction ``supply_width`` of L (a feed hole: its diameter over
+        L) or runs round the mid-width (``groove="circumferential"``), the journal may be tilted by
         ``tilt`` (gamma_x, gamma_y) (rad), ``options`` is a :class:`~vjax.FiniteJournalOptions`,
-        the bodies rigid; returns a :class:`~vjax.FiniteJournalResult` (SI totals).
+        the bodies deform as plane-strain slices (each axial section as the ring under its own
+        pressure); returns a :class:`~vjax.FiniteJournalResult` (SI totals).
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> sol = journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=64))

@@ -290,8 +290,8 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     for backward whirl). Returns :class:`JournalCoefficients` (module docstring for the frame
     and the sign convention). Differentiable in the bearing's parameters.
 
-    With ``length=L`` (m; and optionally ``tilt``, ``supply_width``): the finite rigid bearing
-    of :mod:`vjax.journal_finite`, its groove fixed in the bearing; K (N/m) and C (N s/m) are
+    With ``length=L`` (m; and optionally ``tilt``, ``supply_width``): the finite bearing of
+    :mod:`vjax.journal_finite` with rigid bodies (deformable ones are refused here), its groove fixed in the bearing; K (N/m) and C (N s/m) are
     the bearing's totals, the 2D film linearized in the journal's position and velocity
     (:func:`vjax.journal_finite.stiffness_damping`), independent of the whirl frequency.
 
@@ -307,12 +307,17 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     _checks.finite("whirl", whirl)
     if length is not None or tilt is not None or supply_width != 1.0:
         # the finite rigid bearing (vjax.journal_finite): K, C the bearing's totals, whirl-independent
-        journal_finite.check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
+        journal_finite.check_supported(length, groove, cavitation)
+        if housing is not None or shaft is not None:
+            raise ValueError("housing, shaft: the dynamic coefficients of a finite bearing (length=) are those of "
+                             "rigid bodies so far (its steady state, journal_bearing(..., length=), takes "
+                             "deformable ones); give housing=None and shaft=None")
         opts = journal_finite.FiniteJournalOptions() if options == JournalOptions() else options
         sol, K, C = journal_finite.finite_coefficients(
             R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft, omega_housing=omega_housing,
             load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
-            supply_width=supply_width, tilt=tilt, initial=initial, options=opts, throw=throw)
+            supply_width=supply_width, tilt=tilt, groove=groove or "fixed", initial=initial, options=opts,
+            throw=throw)
         Z = K[None] + 1j * whirl[:, None, None] * C[None]
         return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=jnp.broadcast_to(K, Z.shape),
                                    damping=jnp.broadcast_to(C, Z.shape), speed=jnp.asarray(omega_shaft, whirl.dtype),

@@ -1,4 +1,4 @@
-"""Finite-length rigid journal bearing: the film over the bearing's width (issue 27).
+"""Finite-length journal bearing: the film over the bearing's width, the bodies in plane-strain slices.
 
 Called by :func:`vjax.journal_bearing` with ``length=L``; docs/theory.md §16.
 
@@ -10,15 +10,26 @@ points along the load (its direction when the bearing is set up, so that derivat
 respect to the load vector do not turn the bearing). An axial supply groove at
 ``supply_angle`` (rad from the load, counter-clockwise; default pi, opposite the load) holds
 ``supply_pressure`` over the central fraction ``supply_width`` of the land (1: the whole
-width); ``supply_angle=None``: no groove, the ends alone set the datum. The journal centre
+width; a feed hole: its diameter over L); ``supply_angle=None``: no groove, the ends alone
+set the datum. ``groove="circumferential"``: instead a groove round the mid-width z = 0 at
+``supply_pressure`` (zero width: it splits the land into two of L/2). The journal centre
 at axial position z sits at e + z gamma from the bore's axis: e the eccentricity vector
 (unknown), gamma = ``tilt`` (rad, absolute x, y components: the journal's axis turned about
 y by gamma_x and about -x by gamma_y, small angles), so that
 
     h(theta, z) = c - (e_x + z gamma_x) cos theta - (e_y + z gamma_y) sin theta
 
-(grid axes). Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default),
-"half_sommerfeld", "sommerfeld".
+(grid axes), plus the bodies' deformations u_B + u_J (each positive where it opens the film).
+Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default), "half_sommerfeld",
+"sommerfeld".
+
+Bodies: ``housing`` (hole, liner, half-plane) and ``shaft`` (disc, sleeve, half-plane), as in
+the long bearing, None for rigid. Each axial section deforms as the plane ring does under
+its own pressure (plane strain: no axial coupling between the slices), with the ring's
+steady-state viscoelastic operator, the pattern fixed in space moving at -omega relative to
+each body; the exact limit of a long bearing, and of any bearing whose bodies are thin
+against the pressure's axial length scale (a liner much thinner than L; a bonded layer's
+axial coupling is of the order of its thickness over L). :func:`deformations`.
 
 Load control: the pressure force of the film on the journal balances ``load`` (N, the
 external force on the journal, total for the bearing); the unknowns are the scaled pressures
@@ -36,15 +47,22 @@ angle, from the load) and ``min_film_z`` (m); ``max_pressure`` (Pa). Torques by 
 (N m, counter-clockwise positive), shear tau_B = -h/2 dp/dx - eta (U_B - U_J)/h on the bore and
 tau_J = -h/2 dp/dx + eta (U_B - U_J)/h on the journal (U = omega R): ``torque`` on the housing
 about O, ``torque_shaft`` on the journal about its own centre, and their pressure-flow
-(Poiseuille) parts ``torque_poiseuille``, ``torque_poiseuille_shaft`` (the rest is Couette; the
-Reynolds cavity is taken as full of lubricant, as in Raimondi and Boyd). Flows (m^3/s):
+(Poiseuille) parts ``torque_poiseuille``, ``torque_poiseuille_shaft`` and the viscoelastic
+parts ``torque_viscoelastic``, ``torque_viscoelastic_shaft``: the moment of the pressure on
+each slice's deformed profile about the body's centre, -R int int p du/dtheta dtheta dz (the
+rest is Couette; the Reynolds cavity is taken as full of lubricant, as in Raimondi and Boyd);
+-omega times a viscoelastic torque is the body's hysteretic dissipation. Flows (m^3/s):
 ``side_leakage`` out of both ends, ``supply_flow`` the groove's net outflow, ``inlet_flow``
 the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``power_loss``
-(W): the viscous dissipation in the film, = -omega_B torque - omega_J torque_shaft + p_s
-supply_flow (the power balance of the discrete equations, up to the discretization).
+(W): the viscous dissipation in the film; with the bodies' hysteresis it balances the power
+put in, -omega_B torque - omega_J torque_shaft + p_s supply_flow = power_loss - omega_B
+torque_viscoelastic - omega_J torque_viscoelastic_shaft (the power balance of the discrete
+equations, up to the discretization).
 
 Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected),
-each step solved exactly and directly: the Jacobian in the pressures is block tridiagonal
+each step solved exactly and directly. With deformable bodies by a dense LU of the Jacobian
+(the compliance couples every cell of a slice; up to a few thousand unknowns, O(N^3)); rigid:
+the Jacobian in the pressures is block tridiagonal
 (a ring of n blocks of m - 1 cells, cyclic), bordered by the eccentricity's two columns and
 the two force rows (:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under
 Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solution.
@@ -62,10 +80,12 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _blocks, _checks, _film2d, _scene, _solve, reference, reynolds
-from .operator import grid
+from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, reference, reynolds
+from .bodies import as_body, check_fits, disc, hole
+from .operator import RingOperator, grid, memory_revolutions
 
 CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+GROOVES = ("fixed", "circumferential")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -100,14 +120,16 @@ class FiniteJournalResult(_scene.SceneResult):
     """Solution of ``journal_bearing(..., length=L)`` (SI totals for the bearing; see
     :mod:`vjax.journal_finite`). Arrays on the grid: ``theta`` (n,) from the load direction
     (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
-    ``displacement`` (n, m + 1) (zero: rigid bodies). Convergence: ``iterations``,
-    ``residual``, ``result``; ``converged`` is ``result == 0``."""
+    ``displacement`` of the bore and ``displacement_shaft`` of the journal (n, m + 1) (m,
+    each positive where it opens the film; zero for a rigid body). Convergence:
+    ``iterations``, ``residual``, ``result``; ``converged`` is ``result == 0``."""
 
     theta: jax.Array
     z: jax.Array
     pressure: jax.Array
     film: jax.Array
     displacement: jax.Array
+    displacement_shaft: jax.Array
     force: jax.Array
     moment: jax.Array
     position: jax.Array
@@ -122,6 +144,8 @@ class FiniteJournalResult(_scene.SceneResult):
     torque_shaft: jax.Array
     torque_poiseuille: jax.Array
     torque_poiseuille_shaft: jax.Array
+    torque_viscoelastic: jax.Array
+    torque_viscoelastic_shaft: jax.Array
     side_leakage: jax.Array
     supply_flow: jax.Array
     inlet_flow: jax.Array
@@ -152,6 +176,9 @@ class Params:
     p_ref: jax.Array             # W / (2 R L)
     groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
     s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
+    op_B: RingOperator | None    # each axial slice's ring operator (plane strain); None: rigid
+    op_J: RingOperator | None
+    compliance: jax.Array        # the bodies' compliance scaled by this (1; less in the solver's continuation)
     x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
 
 
@@ -165,6 +192,7 @@ class Config:
     m: int
     tol: float
     max_iter: int
+    circumferential: bool = False     # the supply groove runs round the mid-width (its inlet flow is axial)
 
 
 def _unknowns(cfg: Config):
@@ -187,12 +215,34 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False):
     if motion is not None:
         e = e + motion[:2]
         hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
-    h = _film2d.film(theta, z, pr.c, e, pr.tilt)
-    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
     if cfg.cavitation == "reynolds" and relaxed is not False:
         p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
-    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load)
+    uB, uJ = deformations(p_load, pr, z)
+    h = _film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
+    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ)
+
+
+def deformations(p_load, pr: Params, z):
+    """Radial displacements (n, m + 1) (m, each opening the film) of the bore and the journal
+    under the loading pressure ``p_load`` (Pa): every axial slice deforms as the plane ring
+    (plane strain) under its own pressure, by the ring operator's symbol along theta. The
+    slices' mean first mode is the film force per unit length, which equals the load over L
+    at equilibrium: it is taken from the load (as the long bearing does; for a soft body it
+    moves the slices by up to hundreds of clearances, which Newton then need not find), the
+    slices' deviations from it from their own pressure. Zero for rigid bodies."""
+    zero = jnp.zeros_like(p_load)
+    if pr.op_B is None and pr.op_J is None:
+        return zero, zero
+    n = p_load.shape[0]
+    wz = _film2d.node_widths(z)
+    P = jnp.fft.rfft(p_load, axis=0)                       # (n // 2 + 1, m + 1)
+    # F_x + i F_y = -R dtheta sum_j w_j conj(P[1, j]) = -(load_x + i load_y) at equilibrium
+    mean = (P[1] @ wz) / pr.L
+    P = P.at[1].add((pr.load[0] - 1j * pr.load[1]) / (pr.R * 2 * jnp.pi / n * pr.L) - mean)
+    deform = lambda op: zero if op is None else jnp.fft.irfft(pr.compliance * op.symbol[:, None] * P, n, axis=0)
+    return deform(pr.op_B), deform(pr.op_J)
 
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False):
@@ -220,7 +270,9 @@ def _guess(pr: Params, cfg: Config):
     """Rigid estimate of the unknowns: the eccentricity whose load, the short (Ocvirk) and the
     long half-Sommerfeld capacities combined in series (1/W = 1/W_short + 1/W_long), equals
     the load, at their correspondingly weighted attitude angle; the long bearing's pressure
-    along theta times a parabola across the width, scaled to carry the load."""
+    along theta times a parabola across the width, scaled to carry the load. With deformable
+    bodies the journal moves with their rigid displacement under the load (the slices' first
+    mode, :func:`deformations`), so that the film keeps the rigid estimate's shape."""
     v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
 
     def capacities(eps):
@@ -239,8 +291,13 @@ def _guess(pr: Params, cfg: Config):
     short = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 4 * eps)
     long = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
-    # the load direction in the grid, and the journal at phi ahead of it (behind for v < 0)
+    # the load direction in the grid, and the film's minimum at phi ahead of it (behind for v < 0)
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
+    # the journal: c eps e^{i a} plus the bodies' rigid displacement under the load's first
+    # mode (amplitude |symbol_1| W / (pi R L), along the film's minimum)
+    s1 = pr.compliance * sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
+    moved = c * eps + s1 * pr.W / (jnp.pi * R * L)
+    position = jnp.abs(moved) / c * jnp.exp(1j * (a - jnp.angle(moved)))
     n = cfg.n
     theta, _ = grid(n)
     z = 0.5 * L * pr.s[1:-1]
@@ -253,7 +310,7 @@ def _guess(pr: Params, cfg: Config):
     # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
     # zone by one cell per iteration
     p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
-    return jnp.concatenate([p.ravel(), eps * jnp.stack([jnp.cos(a), jnp.sin(a)])])
+    return jnp.concatenate([p.ravel(), jnp.stack([position.real, position.imag])])
 
 
 def linear_model(x, pr: Params, cfg: Config, relaxed=False):
@@ -274,19 +331,59 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     return _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
 
 
+def _rigid(pr: Params):
+    return pr.op_B is None and pr.op_J is None
+
+
 def _newton(x0, pr: Params, cfg: Config, relaxed=False):
+    """The core's Newton; each step by the block solve for rigid bodies, by a dense LU of the
+    Jacobian (from jacfwd) with deformable ones, whose compliance couples every cell of an
+    axial slice (n (m - 1) + 2 unknowns: up to a few thousand)."""
     def eqs(x, state):
         r, hmin = equations(x, pr, cfg, relaxed)
         return r, state, hmin > 0
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    block_solve = lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
-                                linear_solve=lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r))
+                                linear_solve=block_solve if _rigid(pr) else None)
     return x, stats
 
 
+COMPLIANCE_STAGES = 8
+
+
 def _steady(pr: Params, cfg: Config):
+    """The steady unknowns and the Newton record: :func:`_film_steady` from ``pr.x0``; with
+    deformable bodies, if that fails (a soft body far from the rigid estimate), continuation
+    in the bodies' compliance, scaled by k / COMPLIANCE_STAGES, k = 1, 2, ..., each stage from
+    the last one's solution (the first from the rigid estimate at that compliance): the
+    stages run through one Newton (compiled once), the compliance a traced value."""
+    if _rigid(pr):
+        return _film_steady(pr, cfg)
+    K = COMPLIANCE_STAGES
+
+    def cond(c):
+        return ~c[-1]
+
+    def body(c):
+        k, x, its, _, _ = c
+        compliance = jnp.where(k == 0, 1.0, k / K).astype(x.dtype)
+        staged = dataclasses.replace(pr, compliance=compliance)
+        start = jnp.where(k == 1, jax.lax.stop_gradient(_guess(staged, cfg)), x)
+        x1, st = _film_steady(dataclasses.replace(staged, x0=start), cfg)
+        # done: the direct solve converged, a stage failed, or the last stage ran
+        done = ((k == 0) & st.converged) | ((k > 0) & ~st.converged) | (k == K)
+        return k + 1, x1, its + st.iterations, st, done
+
+    x0 = jax.lax.stop_gradient(pr.x0)
+    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    _, x, its, st, _ = jax.lax.while_loop(cond, body, (0, x0, jnp.asarray(0), init, jnp.asarray(False)))
+    return x, _solve.Stats(its, st.residual, st.result)
+
+
+def _film_steady(pr: Params, cfg: Config):
     """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
     stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
     solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
@@ -328,7 +425,12 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     couette = (eta * dU / hx) @ wz
     arc = R * dth
     TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
-    TB, TJ = TB_p - R * arc * jnp.sum(couette), TJ_p + RJ * arc * jnp.sum(couette)
+    # the pressure on each slice's deformed profile: its moment about the body's centre
+    # (the viscoelastic torque of the long bearing, per slice; central differences in theta)
+    central = lambda u: 0.5 * (jnp.roll(u, -1, axis=0) - jnp.roll(u, 1, axis=0))
+    TvB, TvJ = (-R * jnp.sum(f["p_load"] * central(u), axis=0) @ wz for u in (f["uB"], f["uJ"]))
+    TB = TB_p - R * arc * jnp.sum(couette) + TvB
+    TJ = TJ_p + RJ * arc * jnp.sum(couette) + TvJ
     power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + eta * dU**2 / hx) @ wz) \
         + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
     leakage = _film2d.end_outflow(f["p"], f["h"], z, R, eta)
@@ -338,7 +440,8 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     supply = jnp.sum(pr.groove[:, 1:-1] * _film2d.net_outflow(f, R, z))
     qx = f["qx"]
     downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
-    inlet = jnp.sum(pr.groove * downstream * wz[None, :])
+    # a circumferential groove feeds the land axially: all its outflow goes in
+    inlet = supply if cfg.circumferential else jnp.sum(pr.groove * downstream * wz[None, :])
     F, M = _film2d.resultants(f["p_load"], theta, z, R)
     rot = lambda a: jnp.stack([jnp.cos(pr.frame) * a[0] - jnp.sin(pr.frame) * a[1],
                                jnp.sin(pr.frame) * a[0] + jnp.cos(pr.frame) * a[1]])
@@ -349,11 +452,12 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     load_dir = jnp.arctan2(pr.load[1], pr.load[0])
     phi = jnp.angle(jnp.exp(1j * (jnp.arctan2(e[1], e[0]) - load_dir)))
     return FiniteJournalResult(
-        theta=theta, z=z, pressure=f["p_load"], film=h, displacement=jnp.zeros_like(h), force=-rot(F),
+        theta=theta, z=z, pressure=f["p_load"], film=h, displacement=f["uB"], displacement_shaft=f["uJ"], force=-rot(F),
         moment=rot(M), position=rot(e), eccentricity=jnp.hypot(e[0], e[1]) / pr.c, attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * (pr.frame + jnp.arctan2(e[1], e[0])))),
         min_film=h[i, j], min_film_theta=theta[i], min_film_z=z[j], max_pressure=jnp.max(f["p_load"]),
         torque=TB, torque_shaft=TJ, torque_poiseuille=TB_p, torque_poiseuille_shaft=TJ_p,
+        torque_viscoelastic=TvB, torque_viscoelastic_shaft=TvJ,
         side_leakage=leakage, supply_flow=supply, inlet_flow=inlet, power_loss=power,
         iterations=stats.iterations, residual=stats.residual, result=stats.result)
 
@@ -363,8 +467,9 @@ def solve(pr: Params, cfg: Config, cold: bool = False) -> tuple[jax.Array, _solv
     start from the rigid estimate (:func:`_guess`) instead of ``pr.x0``."""
     if cold:
         pr = dataclasses.replace(pr, x0=jax.lax.stop_gradient(_guess(pr, cfg)))
+    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) else None
     return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
-                                lambda x, aux, prm: linear_model(x, prm, cfg))(pr)
+                                block)(pr)
 
 
 @partial(jax.jit, static_argnums=(1, 2))
@@ -373,11 +478,17 @@ def _run(pr: Params, cfg: Config, cold: bool):
     return _outputs(x, pr, cfg, stats)
 
 
-def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
-          load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
-          supply_width=1.0, tilt=None, options: FiniteJournalOptions = FiniteJournalOptions()):
-    """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`)."""
+def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None, omega_shaft=0.0,
+          omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation="reynolds",
+          supply_angle=math.pi, supply_pressure=0.0, supply_width=1.0, tilt=None, temperature=None, shift=None,
+          groove="fixed", options: FiniteJournalOptions = FiniteJournalOptions()):
+    """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`); ``groove``
+    "fixed" (an axial groove at ``supply_angle``) or "circumferential"."""
+    _checks.one_of("groove", groove, GROOVES)
     _checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
+    housing = as_body("housing", housing, hole, _journal_film.HOUSINGS)
+    shaft = as_body("shaft", shaft, disc, _journal_film.SHAFTS)
+    memory_revolutions(memory)
     _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
     _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
     _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
@@ -396,30 +507,40 @@ def setup(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omeg
         raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
                          f"got {supply_width!r}")
     _checks.load(load)
+    check_fits("housing", housing, R)
+    check_fits("shaft", shaft, R - radial_clearance)
+    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
     if tilt is not None:
         _checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
             raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {np.shape(tilt)}")
     n, m = options.n, options.m
     s = _film2d.unit_nodes(m, options.spacing)     # z / (L/2)
-    groove = np.zeros((n, m + 1))
-    if supply_angle is not None:
+    mask = np.zeros((n, m + 1))
+    circumferential = groove == "circumferential"
+    if circumferential:
+        if supply_width != 1.0:
+            raise ValueError("supply_width is the axial extent of an axial groove; a circumferential groove "
+                             "(groove='circumferential') runs round the mid-width: leave supply_width at 1")
+        mask[:, m // 2] = 1.0            # the mid-width nodes (m is even: z = 0 is a node)
+    elif supply_angle is not None:
         _scene.scalars(_checks.finite, supply_angle=supply_angle)
         sa = _checks.values("supply_angle", supply_angle)
         if sa is None:
             raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
-        groove[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
+        mask[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
     floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
-    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
+                 circumferential)
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-                 supply_pressure, groove, s, unknowns=_unknowns(cfg))
+                 supply_pressure, mask, s, housing, shaft, unknowns=_unknowns(cfg), memory=memory)
     return pr, cfg
 
 
-@partial(jax.jit, static_argnames="unknowns")
+@partial(jax.jit, static_argnames=("unknowns", "memory"))
 def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-            supply_pressure, groove, s, *, unknowns):
+            supply_pressure, groove, s, housing, shaft, *, unknowns, memory):
     """Checked arguments -> :class:`Params` with a zero start, in one compiled program (eager,
     each of its operations would compile on a first call)."""
     dtype = jnp.result_type(float)
@@ -435,7 +556,11 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
     return Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
                   W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
                   omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=f(groove), s=f(s),
-                  x0=jnp.zeros(unknowns + 2, dtype))
+                  # the pressure pattern is fixed in space: it moves at -omega relative to each body
+                  op_B=None if housing is None else housing.operator(R, groove.shape[0], -omega_housing, memory),
+                  op_J=None if shaft is None else shaft.operator(R - radial_clearance, groove.shape[0],
+                                                                 omega=-omega_shaft, memory=memory),
+                  compliance=f(1.0), x0=jnp.zeros(unknowns + 2, dtype))
 
 
 @jax.jit
@@ -448,20 +573,27 @@ def _start(pressure, position, pr: Params):
     return jax.lax.stop_gradient(x0).astype(pr.x0.dtype)
 
 
-def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omega_shaft=0.0, omega_housing=0.0,
-                           load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0,
-                           supply_width=1.0, tilt=None, initial: FiniteJournalResult | None = None,
+def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None,
+                           omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic",
+                           cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0, supply_width=1.0,
+                           tilt=None, temperature=None, shift=None, groove="fixed",
+                           initial: FiniteJournalResult | None = None,
                            options: FiniteJournalOptions = FiniteJournalOptions(),
                            throw: bool = True) -> FiniteJournalResult:
-    """Steady state of a finite rigid journal bearing of axial ``length`` L (m) under ``load``
-    (N, total). Called by :func:`vjax.journal_bearing` with ``length=``; the arguments are
-    its own (module docstring), plus ``supply_width`` (fraction of L the axial groove spans,
-    centred; default 1) and ``tilt`` (gamma_x, gamma_y) (rad, absolute axes; the journal centre
-    at axial position z is displaced by z gamma). Returns :class:`FiniteJournalResult`."""
-    pr, cfg = setup(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
-                    omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
-                    supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width,
-                    tilt=tilt, options=options)
+    """Steady state of a finite journal bearing of axial ``length`` L (m) under ``load`` (N,
+    total). Called by :func:`vjax.journal_bearing` with ``length=``; the arguments are its own
+    (module docstring), plus ``supply_width`` (fraction of L the axial groove spans, centred;
+    default 1) and ``tilt`` (gamma_x, gamma_y) (rad, absolute axes; the journal centre at axial
+    position z is displaced by z gamma). ``housing`` and ``shaft`` (None: rigid) deform as
+    plane-strain slices (:func:`deformations`). ``groove``: "fixed" (the axial groove at
+    ``supply_angle``; a feed hole is one with ``supply_width`` = its diameter over L) or
+    "circumferential" (round the mid-width, at ``supply_pressure``; ``supply_angle`` unused).
+    Returns :class:`FiniteJournalResult`."""
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft,
+                    omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, memory=memory,
+                    cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
+                    supply_width=supply_width, tilt=tilt, temperature=temperature, shift=shift, groove=groove,
+                    options=options)
     n, m = options.n, options.m
     if initial is not None:
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
@@ -472,16 +604,14 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, omeg
     return sol
 
 
-def check_supported(length, housing, shaft, temperature, shift, groove, cavitation):
-    """Refuse, naming the argument, what the finite bearing does not have (yet): deformable
-    bodies, JFO, a groove turning with the line of centres; and tilt without a length."""
+def check_supported(length, groove, cavitation):
+    """Refuse, naming the argument, what the finite bearing does not have (yet): JFO, a groove
+    turning with the line of centres; and tilt without a length."""
     if length is None:
         raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
-    if housing is not None or shaft is not None or temperature is not None or shift is not None:
-        raise ValueError("housing, shaft (and temperature, shift): the finite bearing (length=) has rigid bodies "
-                         "only so far; use the infinitely long bearing (length=None) for deformable ones")
-    if groove not in (None, "fixed"):
-        raise ValueError(f"groove must be 'fixed' (in the bearing) with length=, got {groove!r}")
+    if groove not in (None,) + GROOVES:
+        raise ValueError(f"groove must be 'fixed' (an axial groove fixed in the bearing) or 'circumferential' "
+                         f"with length=, got {groove!r}")
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
                          f"got {cavitation!r}")
@@ -491,12 +621,13 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
                            omega_housing, load_angle, memory, cavitation, supply_angle, supply_pressure,
                            supply_width, groove, tilt, temperature, shift, initial, options, throw):
     """:func:`vjax.journal_bearing`'s arguments -> :func:`finite_journal_bearing`."""
-    check_supported(length, housing, shaft, temperature, shift, groove, cavitation)
-    return finite_journal_bearing(R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft,
-                                  omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
-                                  supply_angle=supply_angle, supply_pressure=supply_pressure,
-                                  supply_width=supply_width, tilt=tilt, initial=initial, options=options,
-                                  throw=throw)
+    check_supported(length, groove, cavitation)
+    return finite_journal_bearing(R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft,
+                                  omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
+                                  memory=memory, cavitation=cavitation, supply_angle=supply_angle,
+                                  supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
+                                  temperature=temperature, shift=shift, groove=groove or "fixed", initial=initial,
+                                  options=options, throw=throw)
 
 
 @partial(jax.jit, static_argnums=(2,))
