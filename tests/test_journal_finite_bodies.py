@@ -33,38 +33,51 @@ def finite(load, LD, **kw):
 
 
 def test_long_bearing_limit_with_a_liner():
-    """L/D -> infinity with a 2 mm polymer liner (full Sommerfeld film, the groove fixed
+    """L/D -> infinity with a 2 mm polymer liner (Reynolds conditions, the groove fixed
     opposite the load, cosine axial spacing): Richardson's extrapolation from L/D = 50 and 100
-    meets the long bearing with the same liner to 2e-3 in eps (measured 1.3e-3; the rigid
-    bearings' 7.6e-4); the liner moves the journal by 0.27 c (so dropping the deformation
-    fails the test). The direct Newton fails from the rigid estimate here: the compliance
-    continuation solves it."""
+    meets the long bearing with the same liner to 2e-3 in eps (measured 1.5e-3; 1.3e-3 with
+    the full Sommerfeld film; the rigid bearings' 7.6e-4) and 1e-3 rad in attitude (1.9e-4);
+    the liner moves the journal by 0.35 c (dropping the deformation fails the test)."""
     W1 = long_load(0.6)
     opt = FiniteJournalOptions(n=OPT.n, m=32, spacing="cosine")
-    kw = dict(groove="fixed", cavitation="sommerfeld")
-    long = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, housing=LINER, options=JournalOptions(n=OPT.n), **kw)
-    rigid = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, options=JournalOptions(n=OPT.n), **kw)
+    long = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, housing=LINER, groove="fixed",
+                           options=JournalOptions(n=OPT.n))
+    rigid = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed", options=JournalOptions(n=OPT.n))
     eps, phi = {}, {}
     for LD in (50.0, 100.0):
-        s = finite(W1 * LD * D, LD, housing=LINER, cavitation="sommerfeld", options=opt)
+        s = finite(W1 * LD * D, LD, housing=LINER, options=opt)
         eps[LD], phi[LD] = float(s.eccentricity), float(s.attitude_angle)
     e0, p0 = float(long.eccentricity), float(long.attitude_angle)
-    assert abs(e0 - float(rigid.eccentricity)) > 2e-2
+    assert abs(e0 - float(rigid.eccentricity)) > 0.3
     assert abs((2 * eps[100.0] - eps[50.0]) / e0 - 1) < 2e-3
-    assert abs(2 * phi[100.0] - phi[50.0] - p0) < 2e-3
+    assert abs(2 * phi[100.0] - phi[50.0] - p0) < 1e-3
 
 
-def test_slices_deform_as_the_plane_ring():
+SLEEVE = vjax.sleeve(SLS, 3e-3)
+W_HALF = 0.5 * long_load(0.5) * D
+
+
+def lined(load=W_HALF, liner=LINER, sleeve=SLEEVE):
+    """A bearing of L/D = 1 with a polymer liner in a rigid housing and a polymer sleeve on the
+    shaft, fed at 1e4 Pa: one compiled program for the tests below (their bodies' parameters
+    are traced values)."""
+    return finite(load, 1.0, housing=liner, shaft=sleeve, supply_pressure=1e4)
+
+
+@pytest.fixture(scope="module")
+def solution():
+    return lined()
+
+
+def test_slices_deform_as_the_plane_ring(solution):
     """At the solution every axial section's displacement is the ring operator (the body's own,
     at the pattern's speed relative to it) applied to that section's pressure: the slices'
     first mode taken from the load during the solve is exact at equilibrium. Housing and
     shaft deform; the end sections, at ambient pressure, do not."""
-    sleeve = vjax.sleeve(SLS, 3e-3)
-    W = 0.5 * long_load(0.5) * D
-    s = finite(W, 1.0, housing=LINER, shaft=sleeve)
+    s = solution
     assert bool(s.converged)
     p = np.asarray(s.pressure)
-    for body, radius, omega, u in ((LINER, R, 0.0, s.displacement), (sleeve, R - C, -WJ, s.displacement_shaft)):
+    for body, radius, omega, u in ((LINER, R, 0.0, s.displacement), (SLEEVE, R - C, -WJ, s.displacement_shaft)):
         op = body.operator(radius, OPT.n, omega)
         expected = np.asarray(jax.vmap(op, in_axes=1, out_axes=1)(jnp.asarray(p)))
         u = np.asarray(u)
@@ -73,44 +86,38 @@ def test_slices_deform_as_the_plane_ring():
         assert np.abs(u[:, [0, -1]]).max() < 1e-8 * np.abs(u).max()
 
 
-def test_stiff_bodies_give_the_rigid_bearing():
-    """Bodies 1e6 times stiffer than the polymer (E ~ 3e14-3e15 Pa): the rigid finite bearing
-    to 1e-6, and zero viscoelastic torque to that order."""
-    stiff = vjax.liner(vjax.Material.sls(0.3e15, 3e15, 1e-3, 0.4), 2e-3)
-    W = 0.5 * long_load(0.5) * D
-    rigid, soft = finite(W, 1.0), finite(W, 1.0, housing=stiff)
-    assert abs(float(soft.eccentricity) - float(rigid.eccentricity)) < 1e-6
-    assert abs(float(soft.attitude_angle) - float(rigid.attitude_angle)) < 1e-6
-    assert abs(float(soft.torque_shaft) / float(rigid.torque_shaft) - 1) < 1e-6
-
-
-def test_power_balance_with_hysteresis():
-    """A viscoelastic sleeve turning with the shaft through the pattern fixed in space
-    dissipates -omega_J torque_viscoelastic_shaft > 0; the power put in equals the film's
-    dissipation plus the sleeve's, to the discretization's accuracy (here 2e-3 of the
-    sleeve's hysteresis: the balance without it is off by the whole of it)."""
-    sleeve = vjax.sleeve(SLS, 3e-3)
-    W = 0.5 * long_load(0.5) * D
-    s = finite(W, 1.0, shaft=sleeve, supply_pressure=1e4)
+def test_power_balance_with_hysteresis(solution):
+    """The sleeve turning with the shaft through the pattern fixed in space dissipates
+    -omega_J torque_viscoelastic_shaft > 0 (the liner, at rest under a pattern at rest, none);
+    the power put in equals the film's dissipation plus the sleeve's, to the discretization's
+    accuracy (here 2e-3 of the sleeve's hysteresis: the balance without it is off by all of it)."""
+    s = solution
     hysteresis = -WJ * float(s.torque_viscoelastic_shaft)
     assert hysteresis > 1e-3 * float(s.power_loss)
-    assert float(s.torque_viscoelastic) == 0.0                     # rigid housing
+    assert abs(float(s.torque_viscoelastic)) < 1e-12 * hysteresis / WJ
     power_in = -WJ * float(s.torque_shaft) + 1e4 * float(s.supply_flow)
     assert abs(power_in - float(s.power_loss) - hysteresis) < 2e-3 * hysteresis
+
+
+def test_stiff_bodies_give_the_rigid_bearing():
+    """Bodies 1e6 times stiffer than the polymer (E ~ 3e14-3e15 Pa): the rigid finite bearing
+    to 1e-6, and no viscoelastic torque to that order."""
+    stiff = vjax.Material.sls(0.3e15, 3e15, 1e-3, 0.4)
+    rigid = finite(W_HALF, 1.0, supply_pressure=1e4)
+    s = lined(liner=vjax.liner(stiff, 2e-3), sleeve=vjax.sleeve(stiff, 3e-3))
+    assert abs(float(s.eccentricity) - float(rigid.eccentricity)) < 1e-6
+    assert abs(float(s.attitude_angle) - float(rigid.attitude_angle)) < 1e-6
+    assert abs(float(s.torque_shaft) / float(rigid.torque_shaft) - 1) < 1e-6
 
 
 def test_gradients_against_finite_differences():
     """d(eps, attitude, torque)/d(load, liner thickness, E0 of the liner) by implicit
     differentiation (the dense Jacobian at the root) against central differences."""
-    W = 0.5 * long_load(0.5) * D
-
-    @jax.jit
     def outputs(q):
-        liner = vjax.liner(vjax.Material.sls(q[2], 3e9, 1e-3, 0.4), q[1])
-        s = finite(q[0], 1.0, housing=liner)
+        s = lined(q[0], vjax.liner(vjax.Material.sls(q[2], 3e9, 1e-3, 0.4), q[1]))
         return jnp.stack([s.eccentricity, s.attitude_angle, s.torque_shaft])
 
-    q = jnp.array([W, 2e-3, 0.3e9])
+    q = jnp.array([W_HALF, 2e-3, 0.3e9])
     J = np.asarray(jax.jit(jax.jacfwd(outputs))(q))
     for i, rel in enumerate((1e-5, 1e-4, 1e-4)):
         h = float(q[i]) * rel
