@@ -65,7 +65,7 @@ import numpy as np
 from . import _checks, _solve, journal_finite, reynolds
 from . import _journal_film as film
 from .journal import JournalOptions, JournalResult, journal_bearing
-from .operator import grid
+from .operator import circulant, grid
 
 __all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
 
@@ -196,13 +196,6 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: f
     return r, F
 
 
-def _circulant(symbol):
-    """Dense matrix of the circulant operator with full-FFT ``symbol``."""
-    n = symbol.shape[0]
-    col = jnp.fft.ifft(symbol)
-    return col[(jnp.arange(n)[:, None] - jnp.arange(n)[None, :]) % n]
-
-
 @partial(jax.jit, static_argnums=(2,))
 def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
     """Z(Omega) (complex, (m, 2, 2), absolute frame) about the steady unknowns ``x0``;
@@ -238,7 +231,7 @@ def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
         for body, R_b, omega_b in bodies:
             if body is not None:
                 sym, sym0 = body.whirl_symbol(R_b, n, omega_b, W), body.whirl_symbol(R_b, n, omega_b, 0.0)
-                M = M + _circulant(sym)
+                M = M + circulant(sym)
                 rot = rot + jnp.fft.ifft((sym0 - sym) * jnp.fft.fft(dp_load0))
         GU = J_U + 1j * W * J_Ud
         A = J_p + 1j * W * J_pd + GU @ (M * (load_slope * pr.p_ref)[None, :])
@@ -291,9 +284,11 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     and the sign convention). Differentiable in the bearing's parameters.
 
     With ``length=L`` (m; and optionally ``tilt``, ``supply_width``): the finite bearing of
-    :mod:`vjax.journal_finite` with rigid bodies (deformable ones are refused here), its groove fixed in the bearing; K (N/m) and C (N s/m) are
-    the bearing's totals, the 2D film linearized in the journal's position and velocity
-    (:func:`vjax.journal_finite.stiffness_damping`), independent of the whirl frequency.
+    :mod:`vjax.journal_finite`, its groove fixed in the bearing; K (N/m) and C (N s/m) are the
+    bearing's totals, the 2D film linearized in the journal's position and velocity, and the
+    bodies' slices by their whirl operators (:func:`vjax.journal_finite.impedance`); rigid
+    bodies give K and C independent of the whirl frequency
+    (:func:`vjax.journal_finite.stiffness_damping`).
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> co = journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 100.0], omega_shaft=100.0,
@@ -306,22 +301,18 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {whirl.shape}")
     _checks.finite("whirl", whirl)
     if length is not None or tilt is not None or supply_width != 1.0:
-        # the finite rigid bearing (vjax.journal_finite): K, C the bearing's totals, whirl-independent
+        # the finite bearing (vjax.journal_finite): Z, K, C the bearing's totals
         journal_finite.check_supported(length, groove, cavitation)
-        if housing is not None or shaft is not None:
-            raise ValueError("housing, shaft: the dynamic coefficients of a finite bearing (length=) are those of "
-                             "rigid bodies so far (its steady state, journal_bearing(..., length=), takes "
-                             "deformable ones); give housing=None and shaft=None")
         opts = journal_finite.FiniteJournalOptions() if options == JournalOptions() else options
-        sol, K, C = journal_finite.finite_coefficients(
-            R, radial_clearance, viscosity, load, length, omega_shaft=omega_shaft, omega_housing=omega_housing,
-            load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
-            supply_width=supply_width, tilt=tilt, groove=groove or "fixed", initial=initial, options=opts,
+        sol, Z, K, C = journal_finite.finite_coefficients(
+            R, radial_clearance, viscosity, load, length, whirl, housing=housing, shaft=shaft,
+            omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+            supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
+            temperature=temperature, shift=shift, groove=groove or "fixed", initial=initial, options=opts,
             throw=throw)
-        Z = K[None] + 1j * whirl[:, None, None] * C[None]
-        return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=jnp.broadcast_to(K, Z.shape),
-                                   damping=jnp.broadcast_to(C, Z.shape), speed=jnp.asarray(omega_shaft, whirl.dtype),
-                                   steady=sol, length=jnp.asarray(length, whirl.dtype))
+        return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=K, damping=C,
+                                   speed=jnp.asarray(omega_shaft, whirl.dtype), steady=sol,
+                                   length=jnp.asarray(length, whirl.dtype))
     groove = "line_of_centres" if groove is None else groove
     sol = journal_bearing(R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
                           omega_housing=omega_housing, load_angle=load_angle, memory="periodic",

@@ -82,7 +82,7 @@ import numpy as np
 
 from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
-from .operator import RingOperator, grid, memory_revolutions
+from .operator import RingOperator, circulant, grid, memory_revolutions
 
 CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
 GROOVES = ("fixed", "circumferential")
@@ -199,11 +199,13 @@ def _unknowns(cfg: Config):
     return cfg.n * (cfg.m - 1)
 
 
-def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False):
+def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
     """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
     e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
     position and gives the film's rate dh/dt (the dynamic coefficients). ``relaxed`` (traced
-    bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback)."""
+    bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback).
+    ``deformation``: (U, dU/dt) (m, m/s; (n, m + 1) each) the bodies' displacement u_B + u_J and
+    its rate, given instead of computed from the pressure (the dynamic coefficients)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     theta, _ = grid(n)
@@ -218,7 +220,11 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False):
     p_load = reynolds.load_pressure(p, cfg.cavitation)
     if cfg.cavitation == "reynolds" and relaxed is not False:
         p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
-    uB, uJ = deformations(p_load, pr, z)
+    if deformation is None:
+        uB, uJ = deformations(p_load, pr, z)
+    else:
+        uB, uJ = deformation[0], jnp.zeros_like(deformation[0])
+        hdot = hdot + deformation[1]
     h = _film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
     f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
     return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ)
@@ -245,9 +251,10 @@ def deformations(p_load, pr: Params, z):
     return deform(pr.op_B), deform(pr.op_J)
 
 
-def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False):
-    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes)."""
-    f = fields(x, pr, cfg, motion, relaxed)
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
+    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes);
+    the arguments those of :func:`fields`."""
+    f = fields(x, pr, cfg, motion, relaxed, deformation)
     out = _film2d.net_outflow(f, pr.R, f["z"])
     dth = 2 * jnp.pi / cfg.n
     out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
@@ -486,8 +493,6 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     "fixed" (an axial groove at ``supply_angle``) or "circumferential"."""
     _checks.one_of("groove", groove, GROOVES)
     _checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
-    housing = as_body("housing", housing, hole, _journal_film.HOUSINGS)
-    shaft = as_body("shaft", shaft, disc, _journal_film.SHAFTS)
     memory_revolutions(memory)
     _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
     _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
@@ -507,9 +512,7 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
         raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
                          f"got {supply_width!r}")
     _checks.load(load)
-    check_fits("housing", housing, R)
-    check_fits("shaft", shaft, R - radial_clearance)
-    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
+    housing, shaft = bodies_at(R, radial_clearance, housing, shaft, temperature, shift)
     if tilt is not None:
         _checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
@@ -536,6 +539,15 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
                  supply_pressure, mask, s, housing, shaft, unknowns=_unknowns(cfg), memory=memory)
     return pr, cfg
+
+
+def bodies_at(R, radial_clearance, housing, shaft, temperature, shift):
+    """The checked housing and shaft bodies (None: rigid) at ``temperature`` under ``shift``."""
+    housing = as_body("housing", housing, hole, _journal_film.HOUSINGS)
+    shaft = as_body("shaft", shaft, disc, _journal_film.SHAFTS)
+    check_fits("housing", housing, R)
+    check_fits("shaft", shaft, R - radial_clearance)
+    return _scene.at_temperature(temperature, shift, housing, shaft)
 
 
 @partial(jax.jit, static_argnames=("unknowns", "memory"))
@@ -656,26 +668,84 @@ def stiffness_damping(x0, pr: Params, cfg: Config):
     return turn(KC[:, :2]), turn(KC[:, 2:])
 
 
-def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config):
-    """(K, C) (N/m, N s/m, absolute axes) about a converged :class:`FiniteJournalResult` of the
-    bearing ``pr``, ``cfg`` (the steady solve of the same arguments); its pressure recovered
-    for the half-Sommerfeld film (whose result holds the clipped pressure) by one more solve."""
+@partial(jax.jit, static_argnums=(2,))
+def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
+    """Z(Omega) = K + i Omega C (complex (k, 2, 2), N/m, absolute axes) of the finite bearing
+    with deformable bodies about the steady unknowns x0, for whirl frequencies ``whirl`` (k,)
+    (rad/s). ``bodies``: ((body or None, radius, speed of the pattern relative to it), ...) for
+    the housing and the shaft. The grid is fixed in space (the groove fixed in the bearing): a
+    journal motion changes the film by -(dX cos theta + dY sin theta) and adds its rate to
+    dh/dt; each axial slice's bodies respond to the perturbed loading pressure by their whirl
+    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's),
+    which adds to the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
+
+        (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
+
+    (S the loading pressure's slope: the half-Sommerfeld clip), Z = -dF/dx; a dense complex
+    solve per whirl frequency (n (m - 1) unknowns)."""
+    n, m = cfg.n, cfg.m
+    N = _unknowns(cfg)
+    pz0 = x0[:N]
+    f0 = fields(x0, pr, cfg)
+    U0, zero, motion0 = f0["uB"] + f0["uJ"], jnp.zeros((n, m + 1), x0.dtype), jnp.zeros(4, x0.dtype)
+
+    def eqs(pz, U, Udot, motion):
+        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot))
+
+    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(pz0, U0, zero, motion0)
+    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0)[1])(pz0)                     # (2, N)
+    slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
+
+    def one(W):
+        M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in bodies
+                if body is not None)
+        GU = (J_U + 1j * W * J_Ud)[:, :, 1:-1]      # the end nodes hold ambient pressure: no response
+        A = J_p + (jnp.einsum("rkj,ki->rij", GU, M) * slope[None]).reshape(N, N)
+        b = J_s[:, :2] + 1j * W * J_s[:, 2:]
+        return -G @ jnp.linalg.solve(A, -b)
+
+    Z = jax.vmap(one)(whirl)
+    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
+    rot = jnp.array([[c, -s], [s, c]])
+    return jnp.einsum("ij,wjk,lk->wil", rot, Z, rot)
+
+
+def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies=(), whirl=None):
+    """(Z, K, C) (complex N/m, N/m, N s/m; (k, 2, 2), absolute axes) at the whirl frequencies
+    ``whirl`` (k,) about a converged :class:`FiniteJournalResult` of the bearing ``pr``, ``cfg``
+    (the steady solve of the same arguments); its pressure recovered for the half-Sommerfeld
+    film (whose result holds the clipped pressure) by one more solve. Rigid bodies:
+    :func:`stiffness_damping` (independent of the whirl); deformable ones (``bodies`` as in
+    :func:`impedance`): :func:`impedance`, C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
     frame_back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
                             -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
     x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), frame_back / pr.c])
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
-    return stiffness_damping(x0, pr, cfg)
+    whirl = jnp.zeros(1, x0.dtype) if whirl is None else whirl
+    if _rigid(pr):
+        K, C = stiffness_damping(x0, pr, cfg)
+        K, C = (jnp.broadcast_to(a, whirl.shape + (2, 2)) for a in (K, C))
+        return K + 1j * whirl[:, None, None] * C, K, C
+    Z, dZ = jax.jvp(lambda w: impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
+    at_rest = (whirl == 0)[:, None, None]
+    C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
+    return Z, Z.real, C
 
 
-def finite_coefficients(R, radial_clearance, viscosity, load, length, *, initial=None, throw=True, **kw):
-    """Steady :class:`FiniteJournalResult` and its (K, C) (N/m, N s/m, absolute axes) for
+def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, initial=None, throw=True, **kw):
+    """Steady :class:`FiniteJournalResult` and its (Z, K, C) (complex N/m, N/m, N s/m; (k, 2, 2),
+    absolute axes) at the whirl frequencies ``whirl`` (k,) for
     ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
-    :func:`finite_journal_bearing` (its rigid film's K, C do not depend on the whirl)."""
+    :func:`finite_journal_bearing` (rigid bodies: K, C independent of the whirl)."""
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    K, C = coefficients(steady, pr, cfg)
-    return steady, K, C
+    housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),
+                               kw.get("shift"))
+    # the pressure pattern is fixed in space: it moves at -omega relative to each body
+    bodies = ((housing, R, -kw.get("omega_housing", 0.0)),
+              (shaft, R - radial_clearance, -kw.get("omega_shaft", 0.0)))
+    return (steady, *coefficients(steady, pr, cfg, bodies, whirl))
 
 
 @partial(jax.jit, static_argnums=(2,))

@@ -194,6 +194,14 @@ def whirl_symbol(kind: str, material: Material, R, n: int, omega, whirl, ref_len
     return R * L * J
 
 
+def circulant(symbol):
+    """Dense (n, n) matrix of the circulant operator with full-FFT ``symbol`` (n,) (e.g. a
+    :func:`whirl_symbol`): column k is the operator applied to the unit vector e_k."""
+    n = symbol.shape[0]
+    col = jnp.fft.ifft(symbol)
+    return col[(jnp.arange(n)[:, None] - jnp.arange(n)[None, :]) % n]
+
+
 def spectral_derivative(u):
     """du/dtheta of a periodic sampled field (Nyquist mode dropped)."""
     n = u.shape[-1]
