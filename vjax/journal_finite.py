@@ -753,7 +753,11 @@ def force_at(x, pr: Params, cfg: Config, motion):
     """Film force on the journal (N, grid axes) with the journal held at the position of x
     (its last two entries, e/c) plus ``motion`` (dX, dY, dX/dt, dY/dt) (m, m/s): the nonlinear
     cell equations solved by Newton for the pressures from x's (the position control the
-    dynamic coefficients linearize); returns (force, :class:`~vjax._solve.Stats`)."""
+    dynamic coefficients linearize); returns (force, :class:`~vjax._solve.Stats`). Rigid
+    bodies only: a deformable body's first mode is tied to the load (:func:`deformations`),
+    which position control does not hold."""
+    if not _rigid(pr):
+        raise ValueError("force_at: rigid bodies only (housing=None, shaft=None)")
     N = _unknowns(cfg)
     cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[0]
     empty = jnp.zeros((N, 0), x.dtype)
