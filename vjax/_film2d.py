@@ -71,16 +71,24 @@ def with_ends(p_interior):
     return jnp.concatenate([zero, p_interior, zero], axis=1)
 
 
-def fluxes(p, h, R, z, eta, v):
+def upwind(fraction, v):
+    """Liquid fraction carried through the theta face (i + 1/2, j): the upwind node's."""
+    return jnp.where(v >= 0, fraction, jnp.roll(fraction, -1, axis=0))
+
+
+def fluxes(p, h, R, z, eta, v, fraction=None):
     """Face films, gradients and fluxes of pressure ``p`` and film ``h`` on all nodes (n, m + 1):
     theta faces (i + 1/2, j): ``hx``, ``dpdx`` (Pa/m), ``qx`` (m^2/s per unit width);
-    z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per unit arc)."""
+    z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per unit arc). With a
+    liquid ``fraction`` (n, m + 1) ("jfo") the Couette flux carries the upwind node's liquid
+    only (a striated cavity, as in 1D); the axial flux is the pressure's alone."""
     dth = 2 * jnp.pi / p.shape[0]
     hx = 0.5 * (h + jnp.roll(h, -1, axis=0))
     dpdx = (jnp.roll(p, -1, axis=0) - p) / (R * dth)
     hz = 0.5 * (h[:, 1:] + h[:, :-1])
     dpdz = jnp.diff(p, axis=1) / jnp.diff(z)[None, :]
-    return dict(hx=hx, dpdx=dpdx, qx=-hx**3 * dpdx / (12 * eta) + v * hx,
+    couette = v * hx if fraction is None else v * hx * upwind(fraction, v)
+    return dict(hx=hx, dpdx=dpdx, qx=-hx**3 * dpdx / (12 * eta) + couette,
                 hz=hz, dpdz=dpdz, qz=-hz**3 * dpdz / (12 * eta))
 
 

@@ -118,7 +118,6 @@ from . import _checks, _scene, _solve, journal_finite, reference, reynolds
 from . import _journal_film as film
 from .operator import RingOperator
 
-JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # homotopy of the "jfo" switch, if needed
 NESTED_MIN_N = 128   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid,
 NESTED_MIN_N_RIGID = 512   # rigid ones from this many (direct: 19 steps at n = 256, 27 at 512, > 40 at 1024)
 KRYLOV_MIN_N = 1024  # linear_solver="auto": dense LU up to this many elements, GMRES above
@@ -301,9 +300,9 @@ def _solver(pr: film.Params, cfg: film.Config):
     # Newton on the exact switch from the Reynolds start. Where the film re-forms before the
     # groove, that start can be far from the JFO solution and the semismooth Newton stall on
     # the switch's kinks: then follow the smoothed switch p = (u + sqrt(u^2 + mu^2))/2 from
-    # x0 through mu = JFO_SMOOTHING down to mu = 0 (a turn that ends NONFINITE keeps its start).
+    # x0 through mu = reynolds.JFO_SMOOTHING down to mu = 0 (a turn that ends NONFINITE keeps its start).
     # One loop over the schedule with one Newton in it (compiled once, mu traced).
-    schedule = jnp.asarray((0.0,) + JFO_SMOOTHING + (0.0,), x0.dtype)
+    schedule = jnp.asarray((0.0,) + reynolds.JFO_SMOOTHING + (0.0,), x0.dtype)
 
     def cond(s):
         i, _, _, st = s

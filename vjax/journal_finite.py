@@ -20,8 +20,8 @@ y by gamma_x and about -x by gamma_y, small angles), so that
     h(theta, z) = c - (e_x + z gamma_x) cos theta - (e_y + z gamma_y) sin theta
 
 (grid axes), plus the bodies' deformations u_B + u_J (each positive where it opens the film).
-Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default), "half_sommerfeld",
-"sommerfeld".
+Film equations: :mod:`vjax._film2d`. Cavitation "reynolds" (default), "jfo" (mass-conserving:
+Elrod's universal unknown, as in 1D), "half_sommerfeld", "sommerfeld".
 
 Bodies: ``housing`` (hole, liner, half-plane) and ``shaft`` (disc, sleeve, half-plane), as in
 the long bearing, None for rigid. Each axial section deforms as the plane ring does under
@@ -84,7 +84,7 @@ from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, referenc
 from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, circulant, grid, memory_revolutions
 
-CAVITATION = ("reynolds", "half_sommerfeld", "sommerfeld")
+CAVITATION = ("reynolds", "jfo", "half_sommerfeld", "sommerfeld")
 GROOVES = ("fixed", "circumferential")
 
 
@@ -120,6 +120,7 @@ class FiniteJournalResult(_scene.SceneResult):
     """Solution of ``journal_bearing(..., length=L)`` (SI totals for the bearing; see
     :mod:`vjax.journal_finite`). Arrays on the grid: ``theta`` (n,) from the load direction
     (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
+    ``film_fraction`` (n, m + 1): the liquid fraction of the film (below 1 in a "jfo" cavity),
     ``displacement`` of the bore and ``displacement_shaft`` of the journal (n, m + 1) (m,
     each positive where it opens the film; zero for a rigid body). Convergence:
     ``iterations``, ``residual``, ``result``; ``converged`` is ``result == 0``."""
@@ -128,6 +129,7 @@ class FiniteJournalResult(_scene.SceneResult):
     z: jax.Array
     pressure: jax.Array
     film: jax.Array
+    film_fraction: jax.Array
     displacement: jax.Array
     displacement_shaft: jax.Array
     force: jax.Array
@@ -179,6 +181,7 @@ class Params:
     op_B: RingOperator | None    # each axial slice's ring operator (plane strain); None: rigid
     op_J: RingOperator | None
     compliance: jax.Array        # the bodies' compliance scaled by this (1; less in the solver's continuation)
+    smoothing: jax.Array         # mu of the "jfo" switch (0: exact; more in the solver's homotopy)
     x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
 
 
@@ -211,7 +214,12 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     theta, _ = grid(n)
     z = 0.5 * pr.L * pr.s
     pz = x[:N].reshape(n, m - 1)
-    p = _film2d.with_ends(pz * pr.p_ref)
+    jfo = cfg.cavitation == "jfo"
+    # "jfo": pz is Elrod's universal unknown, the pressure where positive, the liquid film
+    # fraction - 1 where negative (:func:`vjax.reynolds.pressure_and_fraction`)
+    p_scaled, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation, pr.smoothing if jfo else 0.0)
+    p = _film2d.with_ends(p_scaled * pr.p_ref)
+    fraction = 1.0 + _film2d.with_ends(fraction - 1.0)     # the ends: ambient, a full film
     e = pr.c * x[N:N + 2]
     hdot = jnp.zeros((n, m + 1), x.dtype)
     if motion is not None:
@@ -226,8 +234,9 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
         uB, uJ = deformation[0], jnp.zeros_like(deformation[0])
         hdot = hdot + deformation[1]
     h = _film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
-    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
-    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ)
+    f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
+                fraction=fraction)
 
 
 def deformations(p_load, pr: Params, z):
@@ -390,6 +399,48 @@ def _steady(pr: Params, cfg: Config):
     return x, _solve.Stats(its, st.residual, st.result)
 
 
+def _jfo_start(x, pr: Params, cfg: Config):
+    """JFO unknowns from a Reynolds solution x: its pressure where positive; in the cavity of
+    each axial line the film fraction that carries, as a Couette flow, the flow leaving that
+    line's pressurized film at its pressure peak, f = Q / (v h), as the universal variable f - 1."""
+    N = _unknowns(cfg)
+    f = fields(x, pr, dataclasses.replace(cfg, cavitation="reynolds"))
+    p, qx = f["p"][:, 1:-1], f["qx"][:, 1:-1]
+    peak = jnp.argmax(p, axis=0)
+    flow = jnp.take_along_axis(qx, peak[None, :], axis=0)
+    fraction = jnp.clip(flow / (pr.v * f["h"][:, 1:-1]), 0.0, 1.0)
+    cavity = p <= 1e-9 * jnp.max(p)
+    return x.at[:N].set(jnp.where(cavity, fraction - 1.0, p / pr.p_ref).ravel())
+
+
+def _jfo_steady(pr: Params, cfg: Config):
+    """Mass-conserving cavitation: the Reynolds solution (the same pressure where the film
+    re-forms only at the groove) with its cavity filled by :func:`_jfo_start`, then Newton on
+    the exact switch; if that fails (the semismooth Newton can stall on the switch's kinks
+    far from the root), the smoothed switch from that start through mu =
+    reynolds.JFO_SMOOTHING down to 0 (a turn ending NONFINITE keeps its start). One Newton in
+    one loop, mu traced: compiled once (the Reynolds stage apart)."""
+    N = _unknowns(cfg)
+    start = dataclasses.replace(pr, x0=pr.x0.at[:N].max(0.0))
+    xr, st_r = _film_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
+    x0 = _jfo_start(xr, pr, cfg)
+    schedule = jnp.asarray((0.0,) + reynolds.JFO_SMOOTHING + (0.0,), x0.dtype)
+
+    def cond(s):
+        i, _, _, st = s
+        return (i < schedule.shape[0]) & ~((i == 1) & st.converged)
+
+    def body(s):
+        i, x, its, _ = s
+        x1, st = _newton(jnp.where(i == 1, x0, x), dataclasses.replace(pr, smoothing=schedule[i]), cfg)
+        return i + 1, jnp.where(st.result == _solve.NONFINITE, x, x1), its + st.iterations, st
+
+    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
+    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), init))
+    result = jnp.where(st_r.converged, st.result, st_r.result)
+    return x, _solve.Stats(st_r.iterations + its, st.residual, result)
+
+
 def _film_steady(pr: Params, cfg: Config):
     """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
     stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
@@ -397,6 +448,8 @@ def _film_steady(pr: Params, cfg: Config):
     raised by 0.1 p_ref. The stages run through one Newton (compiled once), the relaxation a
     traced switch."""
     x0 = jax.lax.stop_gradient(pr.x0)
+    if cfg.cavitation == "jfo":
+        return _jfo_steady(pr, cfg)
     if cfg.cavitation != "reynolds":
         return _newton(x0, pr, cfg)
     N = _unknowns(cfg)
@@ -428,8 +481,10 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     wz = _film2d.node_widths(z)
     hx, dpdx = f["hx"], f["dpdx"]
     dU = pr.omega_B * R - pr.omega_J * RJ
+    # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
+    liquid = _film2d.upwind(f["fraction"], pr.v)
     poiseuille = (-0.5 * hx * dpdx) @ wz
-    couette = (eta * dU / hx) @ wz
+    couette = (liquid * eta * dU / hx) @ wz
     arc = R * dth
     TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
     # the pressure on each slice's deformed profile: its moment about the body's centre
@@ -438,7 +493,7 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     TvB, TvJ = (-R * jnp.sum(f["p_load"] * central(u), axis=0) @ wz for u in (f["uB"], f["uJ"]))
     TB = TB_p - R * arc * jnp.sum(couette) + TvB
     TJ = TJ_p + RJ * arc * jnp.sum(couette) + TvJ
-    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + eta * dU**2 / hx) @ wz) \
+    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / hx) @ wz) \
         + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
     leakage = _film2d.end_outflow(f["p"], f["h"], z, R, eta)
     # the groove's net outflow: its interior cells, the ones held at the supply pressure; its
@@ -459,7 +514,8 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     load_dir = jnp.arctan2(pr.load[1], pr.load[0])
     phi = jnp.angle(jnp.exp(1j * (jnp.arctan2(e[1], e[0]) - load_dir)))
     return FiniteJournalResult(
-        theta=theta, z=z, pressure=f["p_load"], film=h, displacement=f["uB"], displacement_shaft=f["uJ"], force=-rot(F),
+        theta=theta, z=z, pressure=f["p_load"], film=h, film_fraction=f["fraction"], displacement=f["uB"],
+        displacement_shaft=f["uJ"], force=-rot(F),
         moment=rot(M), position=rot(e), eccentricity=jnp.hypot(e[0], e[1]) / pr.c, attitude_angle=phi,
         line_of_centres_angle=jnp.angle(jnp.exp(1j * (pr.frame + jnp.arctan2(e[1], e[0])))),
         min_film=h[i, j], min_film_theta=theta[i], min_film_z=z[j], max_pressure=jnp.max(f["p_load"]),
@@ -572,7 +628,7 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
                   op_B=None if housing is None else housing.operator(R, groove.shape[0], -omega_housing, memory),
                   op_J=None if shaft is None else shaft.operator(R - radial_clearance, groove.shape[0],
                                                                  omega=-omega_shaft, memory=memory),
-                  compliance=f(1.0), x0=jnp.zeros(unknowns + 2, dtype))
+                  compliance=f(1.0), smoothing=f(0.0), x0=jnp.zeros(unknowns + 2, dtype))
 
 
 @jax.jit
@@ -617,8 +673,8 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
 
 
 def check_supported(length, groove, cavitation):
-    """Refuse, naming the argument, what the finite bearing does not have (yet): JFO, a groove
-    turning with the line of centres; and tilt without a length."""
+    """Refuse, naming the argument, what the finite bearing does not have: a groove turning with
+    the line of centres; and tilt without a length."""
     if length is None:
         raise ValueError("tilt and supply_width need a finite bearing: give its length (m)")
     if groove not in (None,) + GROOVES:
@@ -738,6 +794,9 @@ def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, 
     absolute axes) at the whirl frequencies ``whirl`` (k,) for
     ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
     :func:`finite_journal_bearing` (rigid bodies: K, C independent of the whirl)."""
+    if kw.get("cavitation") == "jfo":
+        raise ValueError("cavitation='jfo': the dynamic coefficients of a finite bearing with the mass-conserving "
+                         "cavity are not built yet (its film fraction has its own dynamics); use 'reynolds'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
     housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),

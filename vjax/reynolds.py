@@ -33,6 +33,7 @@ from __future__ import annotations
 import jax.numpy as jnp
 
 CAVITATION = ("reynolds", "jfo", "half_sommerfeld", "sommerfeld")
+JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # the solvers' homotopy of the "jfo" switch, if needed
 
 
 def fischer_burmeister(a, b):
