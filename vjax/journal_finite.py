@@ -177,6 +177,7 @@ class Params:
     omega_J: jax.Array
     p_ref: jax.Array             # W / (2 R L)
     groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
+    circumferential: jax.Array   # 1: the groove runs round the mid-width (its inlet flow is axial), else 0
     s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
     op_B: RingOperator | None    # each axial slice's ring operator (plane strain); None: rigid
     op_J: RingOperator | None
@@ -195,7 +196,6 @@ class Config:
     m: int
     tol: float
     max_iter: int
-    circumferential: bool = False     # the supply groove runs round the mid-width (its inlet flow is axial)
 
 
 def _unknowns(cfg: Config):
@@ -503,7 +503,7 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     qx = f["qx"]
     downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
     # a circumferential groove feeds the land axially: all its outflow goes in
-    inlet = supply if cfg.circumferential else jnp.sum(pr.groove * downstream * wz[None, :])
+    inlet = jnp.where(pr.circumferential > 0, supply, jnp.sum(pr.groove * downstream * wz[None, :]))
     F, M = _film2d.resultants(f["p_load"], theta, z, R)
     rot = lambda a: jnp.stack([jnp.cos(pr.frame) * a[0] - jnp.sin(pr.frame) * a[1],
                                jnp.sin(pr.frame) * a[0] + jnp.cos(pr.frame) * a[1]])
@@ -590,10 +590,10 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
         mask[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
     floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
-    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
-                 circumferential)
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-                 supply_pressure, mask, s, housing, shaft, unknowns=_unknowns(cfg), memory=memory)
+                 supply_pressure, mask, float(circumferential), s, housing, shaft, unknowns=_unknowns(cfg),
+                 memory=memory)
     return pr, cfg
 
 
@@ -608,7 +608,7 @@ def bodies_at(R, radial_clearance, housing, shaft, temperature, shift):
 
 @partial(jax.jit, static_argnames=("unknowns", "memory"))
 def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-            supply_pressure, groove, s, housing, shaft, *, unknowns, memory):
+            supply_pressure, groove, circumferential, s, housing, shaft, *, unknowns, memory):
     """Checked arguments -> :class:`Params` with a zero start, in one compiled program (eager,
     each of its operations would compile on a first call)."""
     dtype = jnp.result_type(float)
@@ -623,7 +623,8 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
     return Params(R=f(R), RJ=f(R - radial_clearance), c=f(radial_clearance), L=f(length), eta=f(viscosity), v=f(v),
                   W=W, load=turn(Wvec), frame=frame, tilt=turn(tilt), ps=f(supply_pressure), omega_B=f(omega_housing),
-                  omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=f(groove), s=f(s),
+                  omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=f(groove),
+                  circumferential=f(circumferential), s=f(s),
                   # the pressure pattern is fixed in space: it moves at -omega relative to each body
                   op_B=None if housing is None else housing.operator(R, groove.shape[0], -omega_housing, memory),
                   op_J=None if shaft is None else shaft.operator(R - radial_clearance, groove.shape[0],
