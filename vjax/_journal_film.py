@@ -255,7 +255,15 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     dtype = jnp.result_type(float)
     floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
     tol = options.tol if options.tol is not None else (max(1e-10, floor) if dtype == jnp.float64 else 1e-4)
-    cfg = Config(cavitation, options, float(tol), groove == "fixed")
+    # The compiled solver's static key: options that do not change the program take their
+    # defaults (a dense solve ignores krylov_modes, rigid bodies the continuation's strategy
+    # and stages, the tolerance is cfg.tol), so calls differing only in those share it.
+    krylov, rigid, default = options.krylov, housing is None and shaft is None, type(options)()
+    key = dataclasses.replace(options, tol=None, linear_solver="krylov" if krylov else "dense",
+                              krylov_modes=options.krylov_modes if krylov else default.krylov_modes,
+                              strategy=default.strategy if rigid else options.strategy,
+                              stages=default.stages if rigid else options.stages)
+    cfg = Config(cavitation, key, float(tol), groove == "fixed")
 
     groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
     pr = params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure,
