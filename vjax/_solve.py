@@ -197,6 +197,27 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     return (x, state, stats, kept[0]) if carry else (x, state, stats)
 
 
+def homotopy(solve, x0, schedule):
+    """``solve(x, t) -> (x, Stats)`` at ``schedule[0]`` from x0; if that fails, again from x0
+    through ``schedule[1:]`` in turn, each turn from the last one's solution (a turn that ends
+    NONFINITE keeps its start). One loop with one solve in it: compiled once, t traced.
+    Returns (x, Stats of the last turn with the iterations of all)."""
+    schedule = jnp.asarray(schedule, x0.dtype)
+
+    def cond(s):
+        i, _, _, st = s
+        return (i < schedule.shape[0]) & ~((i == 1) & st.converged)
+
+    def body(s):
+        i, x, its, _ = s
+        x1, st = solve(jnp.where(i == 1, x0, x), schedule[i])
+        return i + 1, jnp.where(st.result == NONFINITE, x, x1), its + st.iterations, st
+
+    init = Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(MAX_ITERATIONS))
+    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), init))
+    return x, Stats(its, st.residual, st.result)
+
+
 def _zero_tangent(x):
     x = jnp.asarray(x)
     if jnp.issubdtype(x.dtype, jnp.inexact):

@@ -300,22 +300,9 @@ def _solver(pr: film.Params, cfg: film.Config):
     # Newton on the exact switch from the Reynolds start. Where the film re-forms before the
     # groove, that start can be far from the JFO solution and the semismooth Newton stall on
     # the switch's kinks: then follow the smoothed switch p = (u + sqrt(u^2 + mu^2))/2 from
-    # x0 through mu = reynolds.JFO_SMOOTHING down to mu = 0 (a turn that ends NONFINITE keeps its start).
-    # One loop over the schedule with one Newton in it (compiled once, mu traced).
-    schedule = jnp.asarray((0.0,) + reynolds.JFO_SMOOTHING + (0.0,), x0.dtype)
-
-    def cond(s):
-        i, _, _, st = s
-        return (i < schedule.shape[0]) & ~((i == 1) & st.converged)
-
-    def body(s):
-        i, x, its, _ = s
-        x1, st = film.newton(jnp.where(i == 1, x0, x), pr, cfg, schedule[i])
-        return i + 1, jnp.where(st.result == _solve.NONFINITE, x, x1), its + st.iterations, st
-
-    stats0 = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), stats0))
-    st = _solve.Stats(its, st.residual, st.result)
+    # x0 through mu = reynolds.JFO_SMOOTHING down to mu = 0.
+    x, st = _solve.homotopy(lambda x, mu: film.newton(x, pr, cfg, mu), x0,
+                            (0.0,) + reynolds.JFO_SMOOTHING + (0.0,))
     result = jnp.where(st_r.converged, st.result, st_r.result)
     return x, (_solve.Stats(st_r.iterations + st.iterations, st.residual, result), stages)
 

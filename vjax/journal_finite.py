@@ -424,21 +424,10 @@ def _jfo_steady(pr: Params, cfg: Config):
     start = dataclasses.replace(pr, x0=pr.x0.at[:N].max(0.0))
     xr, st_r = _film_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
     x0 = _jfo_start(xr, pr, cfg)
-    schedule = jnp.asarray((0.0,) + reynolds.JFO_SMOOTHING + (0.0,), x0.dtype)
-
-    def cond(s):
-        i, _, _, st = s
-        return (i < schedule.shape[0]) & ~((i == 1) & st.converged)
-
-    def body(s):
-        i, x, its, _ = s
-        x1, st = _newton(jnp.where(i == 1, x0, x), dataclasses.replace(pr, smoothing=schedule[i]), cfg)
-        return i + 1, jnp.where(st.result == _solve.NONFINITE, x, x1), its + st.iterations, st
-
-    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), init))
+    x, st = _solve.homotopy(lambda x, mu: _newton(x, dataclasses.replace(pr, smoothing=mu), cfg), x0,
+                            (0.0,) + reynolds.JFO_SMOOTHING + (0.0,))
     result = jnp.where(st_r.converged, st.result, st_r.result)
-    return x, _solve.Stats(st_r.iterations + its, st.residual, result)
+    return x, _solve.Stats(st_r.iterations + st.iterations, st.residual, result)
 
 
 def _film_steady(pr: Params, cfg: Config):
