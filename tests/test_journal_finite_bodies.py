@@ -34,18 +34,26 @@ def finite(load, LD, **kw):
 
 SLEEVE = vjax.sleeve(SLS, 3e-3)
 W_HALF = 0.5 * long_load(0.5) * D
+LOAD = jnp.array([0.0, -W_HALF])        # the load vector (N): its derivatives give the static stiffness
 
 
-def lined(load=W_HALF, liner=LINER, sleeve=SLEEVE):
+def lined(load=LOAD, liner=LINER, sleeve=SLEEVE):
     """A bearing of L/D = 1 with a polymer liner in a rigid housing and a polymer sleeve on the
-    shaft, fed at 1e4 Pa: one compiled program for the tests below (their bodies' parameters
-    are traced values)."""
+    shaft, fed at 1e4 Pa: one compiled program for the tests below (their loads and bodies'
+    parameters are traced values)."""
     return finite(load, 1.0, housing=liner, shaft=sleeve, supply_pressure=1e4)
 
 
 @pytest.fixture(scope="module")
 def solution():
     return lined()
+
+
+def outputs(q):
+    """(journal position x, y (m), eps, attitude, shaft torque) of the lined bearing at
+    q = (load x, load y (N), liner thickness (m), liner E0 (Pa))."""
+    s = lined(q[:2], vjax.liner(vjax.Material.sls(q[3], 3e9, 1e-3, 0.4), q[2]))
+    return jnp.concatenate([s.position, jnp.stack([s.eccentricity, s.attitude_angle, s.torque_shaft])])
 
 
 def test_slices_deform_as_the_plane_ring(solution):
@@ -76,21 +84,6 @@ def test_power_balance_with_hysteresis(solution):
     assert abs(float(s.torque_viscoelastic)) < 1e-12 * hysteresis / WJ
     power_in = -WJ * float(s.torque_shaft) + 1e4 * float(s.supply_flow)
     assert abs(power_in - float(s.power_loss) - hysteresis) < 2e-3 * hysteresis
-
-
-def test_gradients_against_finite_differences():
-    """d(eps, attitude, torque)/d(load, liner thickness, E0 of the liner) by implicit
-    differentiation (the dense Jacobian at the root) against central differences."""
-    def outputs(q):
-        s = lined(q[0], vjax.liner(vjax.Material.sls(q[2], 3e9, 1e-3, 0.4), q[1]))
-        return jnp.stack([s.eccentricity, s.attitude_angle, s.torque_shaft])
-
-    q = jnp.array([W_HALF, 2e-3, 0.3e9])
-    J = np.asarray(jax.jit(jax.jacfwd(outputs))(q))
-    for i, rel in enumerate((1e-5, 1e-4, 1e-4)):
-        h = float(q[i]) * rel
-        fd = (np.asarray(outputs(q.at[i].add(h))) - np.asarray(outputs(q.at[i].add(-h)))) / (2 * h)
-        assert np.allclose(J[:, i], fd, rtol=1e-5, atol=1e-9 * np.abs(fd).max()), (i, J[:, i], fd)
 
 
 # ---------------------------------------------------------------- the long-bearing limit
@@ -125,29 +118,33 @@ def test_long_bearing_limit_with_a_liner():
 
 
 # ---------------------------------------------------------------- dynamic coefficients
-def test_zero_whirl_stiffness_is_the_static_stiffness():
-    """K(0) of the lined bearing (a liner at rest, a sleeve turning with the shaft) is the
-    inverse of d(journal position)/d(load vector) by jax.jacfwd of the steady solution: the
-    bodies' whirl operators at Omega = 0 are their steady ones (1e-7). Bodies 1e6 times stiffer
-    (E ~ 3e14-3e15 Pa) give the rigid bearing: its steady state to 1e-6, its K and C to 1e-5
-    (measured 1.3e-6: the compliance ratio)."""
+def test_derivatives_and_the_static_stiffness():
+    """jax.jacfwd of the lined bearing's (position, eps, attitude, torque) with respect to (load
+    vector, liner thickness, liner E0), by implicit differentiation (the dense Jacobian at the
+    root), against central differences (1e-5; not across the load: the grid, and the groove
+    with it, is set along the load's direction, so a difference across it turns the bearing,
+    which the derivative holds fixed). K(0) of the bearing (a liner at rest, a sleeve turning
+    with the shaft) is the inverse of its d(position)/d(load vector): the bodies' whirl
+    operators at Omega = 0 are their steady ones (1e-7). Bodies 1e6 times stiffer (E ~
+    3e14-3e15 Pa) give the rigid bearing: its steady state to 1e-6, its K and C to 1e-5
+    (measured 1.3e-6: the compliance ratio). One test: the Jacobian's program serves both."""
+    q = jnp.array([0.0, -W_HALF, 2e-3, 0.3e9])
+    J = np.asarray(jax.jit(jax.jacfwd(outputs))(q))
+    for i, h in ((1, 1e-5 * W_HALF), (2, 2e-7), (3, 3e4)):
+        fd = (np.asarray(outputs(q.at[i].add(h))) - np.asarray(outputs(q.at[i].add(-h)))) / (2 * h)
+        assert np.allclose(J[:, i], fd, rtol=1e-5, atol=1e-9 * np.abs(fd).max()), (i, J[:, i], fd)
+
     whirl = [0.0, 100.0]
     kw = dict(omega_shaft=WJ, housing=LINER, shaft=SLEEVE, supply_pressure=1e4, length=D, options=OPT)
-    co = vjax.journal_coefficients(R, C, ETA, W_HALF, whirl, **kw)
-    load = jnp.array([0.0, -W_HALF])
-
-    @jax.jit
-    def position(F):
-        return journal_bearing(R, C, ETA, F, initial=co.steady, **kw).position
-
-    K = np.linalg.inv(np.asarray(jax.jacfwd(position)(load)))
+    co = vjax.journal_coefficients(R, C, ETA, LOAD, whirl, **kw)
+    K = np.linalg.inv(J[:2, :2])
     assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
     assert np.max(np.abs(np.asarray(co.stiffness[1] - co.stiffness[0]))) > 1e-3 * np.abs(K).max()
 
     stiff = vjax.Material.sls(0.3e15, 3e15, 1e-3, 0.4)
-    hard = vjax.journal_coefficients(R, C, ETA, W_HALF, whirl, **dict(kw, housing=vjax.liner(stiff, 2e-3),
-                                                                     shaft=vjax.sleeve(stiff, 3e-3)))
-    rigid = vjax.journal_coefficients(R, C, ETA, W_HALF, whirl, **dict(kw, housing=None, shaft=None))
+    hard = vjax.journal_coefficients(R, C, ETA, LOAD, whirl, **dict(kw, housing=vjax.liner(stiff, 2e-3),
+                                                                   shaft=vjax.sleeve(stiff, 3e-3)))
+    rigid = vjax.journal_coefficients(R, C, ETA, LOAD, whirl, **dict(kw, housing=None, shaft=None))
     for name in ("eccentricity", "attitude_angle"):
         assert abs(float(getattr(hard.steady, name)) - float(getattr(rigid.steady, name))) < 1e-6
     assert abs(float(hard.steady.torque_shaft) / float(rigid.steady.torque_shaft) - 1) < 1e-6
