@@ -62,13 +62,16 @@ equations, up to the discretization).
 Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected),
 each step solved exactly and directly. With deformable bodies by a dense LU of the Jacobian
 (the compliance couples every cell of a slice; up to a few thousand unknowns, O(N^3)); rigid:
-the Jacobian in the pressures is block tridiagonal
-(a ring of n blocks of m - 1 cells, cyclic), bordered by the eccentricity's two columns and
-the two force rows (:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under
-Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solution.
-Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same block solve). Dynamic
-coefficients: :func:`stiffness_damping`. ``throw=True`` raises
-:class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
+the Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1 cells,
+cyclic), bordered by the eccentricity's two columns and the two force rows
+(:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under Reynolds conditions a
+Newton that stalls restarts from the half-Sommerfeld solution; "jfo" starts from the Reynolds
+solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their compliance
+(:func:`_steady`); cold solves on grids of NESTED_MIN_CELLS cells or more start from the 2x
+coarser grid's solution. Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same
+linear solve). Dynamic coefficients: :func:`stiffness_damping` (rigid bodies),
+:func:`impedance` (deformable ones). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
+failure, inside ``jit`` too.
 """
 from __future__ import annotations
 
