@@ -50,6 +50,11 @@ def test_notebooks_match_generator(tmp_path):
 def test_notebook_runs(path, tmp_path):
     env = dict(os.environ, VJAX_NOTEBOOK_QUICK="1", VJAX_NOTEBOOK_OUT=str(tmp_path / "out"), MPLBACKEND="Agg",
                PYTHONPATH=str(ROOT))
+    if os.environ.get("VJAX_TEST_XLA_CACHE"):
+        # the suite's XLA cache (conftest.py), through JAX's environment variables: the
+        # notebooks solve some of the tests' scenes (the thesis roller and journal at n = 64)
+        env.update(JAX_COMPILATION_CACHE_DIR=os.environ["VJAX_TEST_XLA_CACHE"],
+                   JAX_PERSISTENT_CACHE_MIN_COMPILE_TIME_SECS="0.2")
     r = subprocess.run([sys.executable, "-c", RUNNER, str(path)], cwd=ROOT / "notebooks", env=env,
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, (r.stdout[-2000:], r.stderr[-4000:])
