@@ -341,12 +341,15 @@ def test_float32_runs_without_nan():
             leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
             assert s.pressure.dtype == np.float32, s.pressure.dtype
             assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
-        # the finite bearing, tilted (one interpreter for both: each costs a JAX import)
-        s = vjax.journal_bearing(0.05, 5e-5, 0.01, 2000.0, omega_shaft=100.0, length=0.1, tilt=(1e-4, 0.0),
-                                 options=vjax.FiniteJournalOptions(n=16, m=4), throw=False)
-        leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
-        assert s.pressure.dtype == np.float32, s.pressure.dtype
-        assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
+        # the finite bearing, tilted; and with a polymer liner and the mass-conserving film (one
+        # interpreter for all: each costs a JAX import)
+        liner = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
+        for kw in (dict(tilt=(1e-4, 0.0)), dict(housing=liner, cavitation="jfo")):
+            s = vjax.journal_bearing(0.05, 5e-5, 0.01, 2000.0, omega_shaft=100.0, length=0.1,
+                                     options=vjax.FiniteJournalOptions(n=16, m=4), throw=False, **kw)
+            leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
+            assert s.pressure.dtype == np.float32, s.pressure.dtype
+            assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
         print("ok")
     """)
     import os
