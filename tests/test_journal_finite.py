@@ -281,6 +281,39 @@ def test_coefficients_static_stiffness(tilted):
     assert abs(Cd[0, 1] - Cd[1, 0]) < 1e-9 * np.abs(Cd).max()
 
 
+def test_tilt_coefficients_are_the_static_stiffness_in_position_and_tilt(tilted):
+    """The 4 x 4 K in (X, Y, gamma_x, gamma_y) -> (F, M) of the tilted bearing predicts the
+    load-controlled steady solution's d(position, moment)/d(load vector, tilt) by jax.jacfwd:
+    dX = K_xx^-1 (dW - K_xg dgamma), dM = -K_gx dX - K_gg dgamma (each block to 1e-7 of its
+    largest entry); its force-position block is journal_coefficients' K and C (1e-10). The
+    damping is reciprocal: in the forces conjugate to (X, Y, gamma_x, gamma_y), which are
+    (F_x, F_y, M_y, -M_x) (gamma_x turns the journal about y, gamma_y about -x), C is
+    symmetric (measured 5e-17; 2e-3 in the raw (M_x, M_y) order, so the test can fail)."""
+    q, _, co = tilted
+    load = jnp.asarray(q[2:])
+    steady, K, Cd = journal_finite.tilt_coefficients(R, C, ETA, load, D, omega_shaft=WJ, tilt=GAMMA, options=OPT)
+    assert np.allclose(np.asarray(K[:2, :2]), np.asarray(co.stiffness[0]), rtol=1e-10, atol=0)
+    assert np.allclose(np.asarray(Cd[:2, :2]), np.asarray(co.damping[0]), rtol=1e-10, atol=0)
+
+    @jax.jit
+    def position_and_moment(p):
+        s = journal_bearing(R, C, ETA, p[:2], omega_shaft=WJ, length=D, tilt=p[2:], options=OPT)
+        return jnp.concatenate([s.position, s.moment])
+
+    J = np.asarray(jax.jacfwd(position_and_moment)(jnp.concatenate([load, GAMMA])))
+    K = np.asarray(K)
+    Kxx_inv = np.linalg.inv(K[:2, :2])
+    predicted = {"dX/dW": Kxx_inv, "dX/dgamma": -Kxx_inv @ K[:2, 2:], "dM/dW": -K[2:, :2] @ Kxx_inv,
+                 "dM/dgamma": -K[2:, 2:] + K[2:, :2] @ Kxx_inv @ K[:2, 2:]}
+    computed = {"dX/dW": J[:2, :2], "dX/dgamma": J[:2, 2:], "dM/dW": J[2:, :2], "dM/dgamma": J[2:, 2:]}
+    for name, block in computed.items():
+        assert np.max(np.abs(block - predicted[name])) < 1e-7 * np.abs(block).max(), name
+    conjugate = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1], [0, 0, -1, 0]], float) @ np.asarray(Cd)
+    assert np.max(np.abs(conjugate - conjugate.T)) < 1e-12 * np.abs(conjugate).max()
+    with pytest.raises(ValueError, match="cavitation"):
+        journal_finite.tilt_coefficients(R, C, ETA, load, D, omega_shaft=WJ, cavitation="jfo", options=OPT)
+
+
 def test_coefficients_against_nonlinear_solves(tilted):
     """Central differences of the nonlinear film force with the journal held at perturbed
     positions and velocities (Newton on the cell equations, :func:`journal_finite.force_at`), 1e-3."""

@@ -756,6 +756,60 @@ def stiffness_damping(x0, pr: Params, cfg: Config):
 
 
 @partial(jax.jit, static_argnums=(2,))
+def tilt_stiffness_damping(x0, pr: Params, cfg: Config):
+    """4 x 4 stiffness and damping of the rigid finite film about the steady unknowns x0, in the
+    journal's position and tilt q = (X, Y, gamma_x, gamma_y) for its force and moment
+    Q = (F_x, F_y, M_x, M_y) (absolute axes; m, rad; N, N m): dQ = -(K dq + C dq/dt), so K has
+    blocks in N/m, N/rad, N m/m, N m/rad (C likewise per second). A tilt dgamma moves the
+    journal centre at axial position z by z dgamma: the film changes by
+    -(dX + z dgamma_x) cos theta - (dY + z dgamma_y) sin theta and its rate likewise; the
+    linearization is :func:`stiffness_damping`'s, whose K and C are the force-position block.
+    The forces conjugate to (X, Y, gamma_x, gamma_y) are (F_x, F_y, M_y, -M_x) (gamma_x turns
+    the journal about y, gamma_y about -x): in that order C is symmetric (reciprocity)."""
+    if not _rigid(pr):
+        raise ValueError("tilt coefficients: rigid bodies only (housing=None, shaft=None)")
+    N, n, m = _unknowns(cfg), cfg.n, cfg.m
+    theta, _ = grid(n)
+    z = 0.5 * pr.L * pr.s
+    zero = jnp.zeros(8, x0.dtype)
+
+    def cells(pz, q):          # q = (dX, dY, dgamma_x, dgamma_y, and their rates)
+        rate = -q[6] * z[None, :] * jnp.cos(theta)[:, None] - q[7] * z[None, :] * jnp.sin(theta)[:, None]
+        return cell_residual(jnp.concatenate([pz, x0[N:]]), dataclasses.replace(pr, tilt=pr.tilt + q[2:4]), cfg,
+                             jnp.stack([q[0], q[1], q[4], q[5]]),
+                             deformation=(jnp.zeros((n, m + 1), x0.dtype), rate))[0]
+
+    def loads(pz):
+        f = fields(jnp.concatenate([pz, x0[N:]]), pr, cfg)
+        return jnp.concatenate(_film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R))
+
+    blocks = _blocks.neighbourhood_blocks(lambda pz: cells(pz, zero), x0[:N], n, m - 1)
+    empty = jnp.zeros((N, 0), x0.dtype)
+    solve, _ = _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x0.dtype))
+    B = jax.jacfwd(lambda q: cells(x0[:N], q))(zero)                   # (N, 8)
+    G = jax.jacrev(loads)(x0[:N])                                       # (4, N)
+    KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (4, 8) = -dQ/d(q, dq/dt)
+    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
+    rot = jnp.kron(jnp.eye(2, dtype=x0.dtype), jnp.array([[c, -s], [s, c]]))
+    return rot @ KC[:, :4] @ rot.T, rot @ KC[:, 4:] @ rot.T
+
+
+def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, initial=None, throw=True, **kw):
+    """Steady :class:`FiniteJournalResult` of a rigid finite bearing and its 4 x 4 stiffness and
+    damping in the journal's position and tilt (:func:`tilt_stiffness_damping`; absolute
+    axes), for a rotor model that carries the journal's angular motion (a misaligned or
+    short, stiff bearing). ``kw``: the keyword arguments of :func:`finite_journal_bearing`."""
+    if kw.get("cavitation", "reynolds") in ("half_sommerfeld", "jfo"):
+        raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
+    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
+    pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
+    back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
+                      -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
+    x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), back / pr.c])
+    return (steady, *tilt_stiffness_damping(x0, pr, cfg))
+
+
+@partial(jax.jit, static_argnums=(2,))
 def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
     """Z(Omega) = K + i Omega C (complex (k, 2, 2), N/m, absolute axes) of the finite bearing
     with deformable bodies about the steady unknowns x0, for whirl frequencies ``whirl`` (k,)
