@@ -205,6 +205,18 @@ def _unknowns(cfg: Config):
     return cfg.n * (cfg.m - 1)
 
 
+def _rotation(frame):
+    """The 2 x 2 rotation from grid axes to absolute ones (the grid's x axis at ``frame``)."""
+    c, s = jnp.cos(frame), jnp.sin(frame)
+    return jnp.array([[c, -s], [s, c]])
+
+
+def _as_unknowns(scaled, position, pr: Params):
+    """Unknowns [scaled pressure (the universal unknown for "jfo") at the interior nodes, journal
+    centre / c in grid axes] from ``scaled`` (n, m + 1) and an absolute ``position`` (m)."""
+    return jnp.concatenate([scaled[:, 1:-1].ravel(), _rotation(pr.frame).T @ position / pr.c])
+
+
 def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
     """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
     e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
@@ -497,8 +509,7 @@ def _outputs(x, pr: Params, cfg: Config, stats):
     # a circumferential groove feeds the land axially: all its outflow goes in
     inlet = jnp.where(pr.circumferential > 0, supply, jnp.sum(pr.groove * downstream * wz[None, :]))
     F, M = _film2d.resultants(f["p_load"], theta, z, R)
-    rot = lambda a: jnp.stack([jnp.cos(pr.frame) * a[0] - jnp.sin(pr.frame) * a[1],
-                               jnp.sin(pr.frame) * a[0] + jnp.cos(pr.frame) * a[1]])
+    rot = lambda a: _rotation(pr.frame) @ a
     e = f["e"]
     h = f["h"]
     k = jnp.argmin(h)
@@ -556,9 +567,7 @@ def _refined(coarse: FiniteJournalResult, pr: Params):
     u = jnp.stack([u, 0.5 * (u + jnp.roll(u, -1, axis=0))], axis=1).reshape(-1, u.shape[1])
     mid = 0.5 * (u[:, :-1] + u[:, 1:])
     u = jnp.concatenate([jnp.stack([u[:, :-1], mid], axis=2).reshape(u.shape[0], -1), u[:, -1:]], axis=1)
-    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
-    e = coarse.position
-    x0 = jnp.concatenate([u[:, 1:-1].ravel(), jnp.stack([c * e[0] + s * e[1], -s * e[0] + c * e[1]]) / pr.c])
+    x0 = _as_unknowns(u, coarse.position, pr)
     return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
 
 
@@ -637,8 +646,7 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
     load = f(load)
     Wvec = jnp.stack([load * jnp.cos(load_angle), load * jnp.sin(load_angle)]) if load.ndim == 0 else load
     frame = jax.lax.stop_gradient(jnp.arctan2(Wvec[1], Wvec[0]))
-    turn = lambda a: jnp.stack([jnp.cos(frame) * a[0] + jnp.sin(frame) * a[1],
-                                -jnp.sin(frame) * a[0] + jnp.cos(frame) * a[1]])
+    turn = lambda a: _rotation(frame).T @ a
     tilt = jnp.zeros(2, dtype) if tilt is None else f(tilt)
     W = jnp.hypot(Wvec[0], Wvec[1])
     v = 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance))
@@ -655,12 +663,8 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
 
 @jax.jit
 def _start(pressure, position, pr: Params):
-    """Unknowns [p / p_ref at the interior nodes, journal centre / c in the load frame] from a
-    solution (absolute frame), as a start that is not differentiated."""
-    back = jnp.stack([jnp.cos(pr.frame) * position[0] + jnp.sin(pr.frame) * position[1],
-                      -jnp.sin(pr.frame) * position[0] + jnp.cos(pr.frame) * position[1]])
-    x0 = jnp.concatenate([(pressure[:, 1:-1] / pr.p_ref).ravel(), back / pr.c])
-    return jax.lax.stop_gradient(x0).astype(pr.x0.dtype)
+    """Unknowns from a solution (:func:`_as_unknowns`), as a start that is not differentiated."""
+    return jax.lax.stop_gradient(_as_unknowns(pressure / pr.p_ref, position, pr)).astype(pr.x0.dtype)
 
 
 def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None,
@@ -749,10 +753,8 @@ def stiffness_damping(x0, pr: Params, cfg: Config):
     B = jax.jacfwd(lambda mo: cells(x0[:N], mo))(motion0)              # (N, 4)
     G = jax.jacrev(force)(x0[:N])                                       # (2, N)
     KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (2, 4) = -dF/d(motion)
-    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
-    rot = jnp.array([[c, -s], [s, c]])
-    turn = lambda A: rot @ A @ rot.T
-    return turn(KC[:, :2]), turn(KC[:, 2:])
+    rot = _rotation(pr.frame)
+    return rot @ KC[:, :2] @ rot.T, rot @ KC[:, 2:] @ rot.T
 
 
 @partial(jax.jit, static_argnums=(2,))
@@ -789,8 +791,7 @@ def tilt_stiffness_damping(x0, pr: Params, cfg: Config):
     B = jax.jacfwd(lambda q: cells(x0[:N], q))(zero)                   # (N, 8)
     G = jax.jacrev(loads)(x0[:N])                                       # (4, N)
     KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (4, 8) = -dQ/d(q, dq/dt)
-    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
-    rot = jnp.kron(jnp.eye(2, dtype=x0.dtype), jnp.array([[c, -s], [s, c]]))
+    rot = jnp.kron(jnp.eye(2, dtype=x0.dtype), _rotation(pr.frame))
     return rot @ KC[:, :4] @ rot.T, rot @ KC[:, 4:] @ rot.T
 
 
@@ -803,9 +804,7 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, initial=N
         raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
-                      -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
-    x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), back / pr.c])
+    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr)
     return (steady, *tilt_stiffness_damping(x0, pr, cfg))
 
 
@@ -846,8 +845,7 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
         return -G @ jnp.linalg.solve(A, -b)
 
     Z = jax.vmap(one)(whirl)
-    c, s = jnp.cos(pr.frame), jnp.sin(pr.frame)
-    rot = jnp.array([[c, -s], [s, c]])
+    rot = _rotation(pr.frame)
     return jnp.einsum("ij,wjk,lk->wil", rot, Z, rot)
 
 
@@ -858,9 +856,7 @@ def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies=()
     film (whose result holds the clipped pressure) by one more solve. Rigid bodies:
     :func:`stiffness_damping` (independent of the whirl); deformable ones (``bodies`` as in
     :func:`impedance`): :func:`impedance`, C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
-    frame_back = jnp.stack([jnp.cos(pr.frame) * steady.position[0] + jnp.sin(pr.frame) * steady.position[1],
-                            -jnp.sin(pr.frame) * steady.position[0] + jnp.cos(pr.frame) * steady.position[1]])
-    x0 = jnp.concatenate([(steady.pressure[:, 1:-1] / pr.p_ref).ravel(), frame_back / pr.c])
+    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
     whirl = jnp.zeros(1, x0.dtype) if whirl is None else whirl
