@@ -218,6 +218,42 @@ def homotopy(solve, x0, schedule):
     return x, Stats(its, st.residual, st.result)
 
 
+def continuation(solve, guess, x0=None, max_stages=40, end=2.0):
+    """Adaptive continuation in a parameter t from 0 to ``end``: ``solve(x, t) -> (x, Stats)``,
+    the first stage (t = 0) from ``guess``, each later one from the last converged solution; a
+    failed stage halves the step, a converged one lets it grow by 1.5 (to at most end / 4). At
+    most ``max_stages`` solves. With ``x0``, a direct solve of the target (t = end) from x0 comes
+    first and the continuation runs only if it fails; its steps count in the iterations, not in
+    the stages. One loop with one solve in it (compiled once, t traced).
+    Returns (x, Stats, number of stages); a run that does not reach t = end reports its last
+    stage's failure, or MAX_ITERATIONS if that stage converged."""
+    dtype = guess.dtype
+    DIRECT, FIRST, STEP = 0, 1, 2     # phases: the direct solve, the first stage (t = 0), later stages
+
+    def cond(s):
+        phase, t, dt, _, _, nst, _, dead = s
+        return (t < end) & (nst < max_stages) & (dt > 5e-4 * end) & ~dead
+
+    def body(s):
+        phase, t, dt, x, its, nst, _, _ = s
+        t1 = jnp.where(phase == DIRECT, end, jnp.where(phase == FIRST, 0.0, jnp.minimum(t + dt, end)))
+        x1, st = solve(jnp.where(phase == FIRST, guess, x), t1)
+        ok = st.converged
+        grown = jnp.where(phase == STEP, jnp.minimum(1.5 * dt, 0.25 * end), dt)
+        return (jnp.where(phase == DIRECT, FIRST, STEP), jnp.where(ok, t1, t),
+                jnp.where(ok, grown, jnp.where(phase == STEP, 0.5 * dt, dt)), jnp.where(ok, x1, x),
+                its + st.iterations, nst + (phase != DIRECT), st,
+                ~ok & (phase == FIRST))       # the easiest stage failed: nothing to continue from
+
+    zero = jnp.asarray(0)
+    stats0 = Stats(zero, jnp.asarray(jnp.inf, dtype), jnp.asarray(MAX_ITERATIONS))
+    init = (jnp.asarray(FIRST if x0 is None else DIRECT), jnp.asarray(0.0, dtype), jnp.asarray(end / 8, dtype),
+            guess if x0 is None else x0, zero, zero, stats0, jnp.asarray(False))
+    _, t, _, x, its, nst, stats, _ = jax.lax.while_loop(cond, body, init)
+    result = jnp.where(t >= end, stats.result, jnp.where(stats.converged, MAX_ITERATIONS, stats.result))
+    return x, Stats(its, stats.residual, result), nst
+
+
 def _zero_tangent(x):
     x = jnp.asarray(x)
     if jnp.issubdtype(x.dtype, jnp.inexact):

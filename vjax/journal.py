@@ -237,43 +237,11 @@ def _staged(pr: film.Params, t):
 
 
 def _continuation(pr, cfg, x0=None):
-    """Adaptive continuation in t (see :func:`_staged`): a failed stage halves the step,
-    a converged one lets it grow by 1.5. At most ``stages`` Newton solves. With ``x0``, a
-    direct Newton solve of the target problem (t = 2) from ``x0`` comes first, and the
-    continuation runs only if it fails (``strategy="auto"``); its steps count in the
-    iterations, not in the stages.
-
-    One loop with one Newton solve per turn, the stage parameter traced: the compiled program
-    holds a single copy of the Newton iteration (the costliest part to compile), not one per
-    call site."""
+    """Adaptive continuation in t (see :func:`_staged`, :func:`vjax._solve.continuation`): at most
+    ``stages`` Newton solves; with ``x0`` (``strategy="auto"``) a direct solve from it first."""
     n = pr.x0.shape[0] - 2
-    dtype = pr.x0.dtype
     guess = film.guess(_staged(pr, 0.0)[0], n, cfg)
-    DIRECT, FIRST, STEP = 0, 1, 2     # phases: the direct solve, the first stage (t = 0), later stages
-
-    def cond(s):
-        phase, t, dt, _, _, nst, _, dead = s
-        return (t < 2.0) & (nst < cfg.options.stages) & (dt > 1e-3) & ~dead
-
-    def body(s):
-        phase, t, dt, x, its, nst, _, _ = s
-        t1 = jnp.where(phase == DIRECT, 2.0, jnp.where(phase == FIRST, 0.0, jnp.minimum(t + dt, 2.0)))
-        x1, st = film.newton(jnp.where(phase == FIRST, guess, x), _staged(pr, t1)[0], cfg)
-        ok = st.converged
-        grown = jnp.where(phase == STEP, jnp.minimum(1.5 * dt, 0.5), dt)
-        return (jnp.where(phase == DIRECT, FIRST, STEP), jnp.where(ok, t1, t),
-                jnp.where(ok, grown, jnp.where(phase == STEP, 0.5 * dt, dt)), jnp.where(ok, x1, x),
-                its + st.iterations, nst + (phase != DIRECT), st,
-                ~ok & (phase == FIRST))       # the easiest stage failed: nothing to continue from
-
-    zero = jnp.asarray(0)
-    stats0 = _solve.Stats(zero, jnp.asarray(jnp.inf, dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    init = (jnp.asarray(FIRST if x0 is None else DIRECT), jnp.asarray(0.0, dtype), jnp.asarray(0.25, dtype),
-            guess if x0 is None else x0, zero, zero, stats0, jnp.asarray(False))
-    _, t, _, x, its, nst, stats, _ = jax.lax.while_loop(cond, body, init)
-    # a stage that did not reach the target problem: its own code, or the iteration limit
-    result = jnp.where(t >= 2.0, stats.result, jnp.where(stats.converged, _solve.MAX_ITERATIONS, stats.result))
-    return x, _solve.Stats(its, stats.residual, result), nst
+    return _solve.continuation(lambda x, t: film.newton(x, _staged(pr, t)[0], cfg), guess, x0, cfg.options.stages)
 
 
 def _jfo_start(x, pr: film.Params, cfg: film.Config):

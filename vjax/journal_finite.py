@@ -66,7 +66,7 @@ the Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1 
 cyclic), bordered by the eccentricity's two columns and the two force rows
 (:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under Reynolds conditions a
 Newton that stalls restarts from the half-Sommerfeld solution; "jfo" starts from the Reynolds
-solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their compliance
+solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their compliance and the speed
 (:func:`_steady`); cold solves on grids of NESTED_MIN_CELLS cells or more start from the 2x
 coarser grid's solution. Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same
 linear solve). Dynamic coefficients: :func:`stiffness_damping` (rigid bodies),
@@ -297,6 +297,16 @@ def equations(x, pr: Params, cfg: Config, relaxed=False):
     return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
 
 
+def _rigid_capacity(eps, pr: Params, parts=False):
+    """The rigid bearing's load capacity (N) at eccentricity ratio eps, estimated as the short
+    (Ocvirk) and the long half-Sommerfeld capacities in series, 1/W = 1/W_short + 1/W_long (with
+    ``parts``: the two)."""
+    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
+    Ws = eta * 2 * v * L**3 / c**2 * eps * jnp.sqrt(16 * eps**2 + jnp.pi**2 * (1 - eps**2)) / (4 * (1 - eps**2) ** 2)
+    Wl = 12 * eta * v * R**2 * L / c**2 * reference.half_sommerfeld_load(eps)
+    return (Ws, Wl) if parts else Ws * Wl / (Ws + Wl)
+
+
 def _guess(pr: Params, cfg: Config):
     """Rigid estimate of the unknowns: the eccentricity whose load, the short (Ocvirk) and the
     long half-Sommerfeld capacities combined in series (1/W = 1/W_short + 1/W_long), equals
@@ -304,21 +314,11 @@ def _guess(pr: Params, cfg: Config):
     along theta times a parabola across the width, scaled to carry the load. With deformable
     bodies the journal moves with their rigid displacement under the load (the slices' first
     mode, :func:`deformations`), so that the film keeps the rigid estimate's shape."""
-    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
-
-    def capacities(eps):
-        Ws = eta * 2 * v * L**3 / c**2 * eps * jnp.sqrt(16 * eps**2 + jnp.pi**2 * (1 - eps**2)) / (
-            4 * (1 - eps**2) ** 2)
-        Wl = 12 * eta * v * R**2 * L / c**2 * reference.half_sommerfeld_load(eps)
-        return Ws, Wl
-
-    def combined(eps):
-        Ws, Wl = capacities(eps)
-        return Ws * Wl / (Ws + Wl)
-
-    eps = _solve.bisect(lambda e: combined(e) - pr.W, jnp.asarray(1e-6, c.dtype), jnp.asarray(0.999, c.dtype), 50)
+    c, R, L, eta = pr.c, pr.R, pr.L, pr.eta
+    eps = _solve.bisect(lambda e: _rigid_capacity(e, pr) - pr.W, jnp.asarray(1e-6, c.dtype),
+                        jnp.asarray(0.999, c.dtype), 50)
     eps = jnp.minimum(eps, 0.95)
-    Ws, Wl = capacities(eps)
+    Ws, Wl = _rigid_capacity(eps, pr, parts=True)
     short = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 4 * eps)
     long = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
@@ -382,36 +382,31 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False):
     return x, stats
 
 
-COMPLIANCE_STAGES = 8
+CONTINUATION_STAGES = 40   # at most this many Newton solves in the continuation of soft bodies
+
+
+def _staged(pr: Params, t):
+    """The problem at continuation parameter t in [0, 2] (as the long bearing's): t in [0, 1] the
+    bodies' compliance ramped in (factor t) at M times the entrainment speed, M such that the
+    rigid bearing would run at eps ~ 0.6 (a thick film, a mild coupling); t in [1, 2] the full
+    compliance, the speed M^(2 - t) down to the target's (geometric)."""
+    M = jnp.maximum(1.0, pr.W / _rigid_capacity(0.6, pr))
+    m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
+    return dataclasses.replace(pr, v=pr.v * m, compliance=jnp.clip(t, 0.0, 1.0).astype(pr.v.dtype))
 
 
 def _steady(pr: Params, cfg: Config):
     """The steady unknowns and the Newton record: :func:`_film_steady` from ``pr.x0``; with
-    deformable bodies, if that fails (a soft body far from the rigid estimate), continuation
-    in the bodies' compliance, scaled by k / COMPLIANCE_STAGES, k = 1, 2, ..., each stage from
-    the last one's solution (the first from the rigid estimate at that compliance): the
-    stages run through one Newton (compiled once), the compliance a traced value."""
+    deformable bodies, if that fails (a soft body far from the rigid estimate, or a load the
+    rigid film could carry only at a far higher speed), adaptive continuation in the compliance
+    and the speed (:func:`_staged`, :func:`vjax._solve.continuation`), the first stage from the
+    rigid estimate: one Newton in one loop (compiled once), the stage parameter traced."""
     if _rigid(pr):
         return _film_steady(pr, cfg)
-    K = COMPLIANCE_STAGES
-
-    def cond(c):
-        return ~c[-1]
-
-    def body(c):
-        k, x, its, _, _ = c
-        compliance = jnp.where(k == 0, 1.0, k / K).astype(x.dtype)
-        staged = dataclasses.replace(pr, compliance=compliance)
-        start = jnp.where(k == 1, jax.lax.stop_gradient(_guess(staged, cfg)), x)
-        x1, st = _film_steady(dataclasses.replace(staged, x0=start), cfg)
-        # done: the direct solve converged, a stage failed, or the last stage ran
-        done = ((k == 0) & st.converged) | ((k > 0) & ~st.converged) | (k == K)
-        return k + 1, x1, its + st.iterations, st, done
-
-    x0 = jax.lax.stop_gradient(pr.x0)
-    init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    _, x, its, st, _ = jax.lax.while_loop(cond, body, (0, x0, jnp.asarray(0), init, jnp.asarray(False)))
-    return x, _solve.Stats(its, st.residual, st.result)
+    solve = lambda x, t: _film_steady(dataclasses.replace(_staged(pr, t), x0=x), cfg)     # noqa: E731
+    guess = jax.lax.stop_gradient(_guess(_staged(pr, 0.0), cfg))
+    x, st, _ = _solve.continuation(solve, guess, jax.lax.stop_gradient(pr.x0), CONTINUATION_STAGES)
+    return x, st
 
 
 def _jfo_start(x, pr: Params, cfg: Config):
