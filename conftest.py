@@ -4,8 +4,6 @@ import atexit
 import gc
 import os
 import shutil
-import subprocess
-import sys
 import tempfile
 
 # One BLAS thread per process: the suite runs one pytest-xdist worker per core, and the
@@ -13,30 +11,18 @@ import tempfile
 # making each dense solve 10-20x slower. Set before numpy loads it; the workers inherit it.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-# XLA:CPU's classic fusion emitters. Most of the suite's time is XLA compiling the solvers'
-# programs, and the newer (MLIR) fusion emitters take about 1.4x as long on them (the journal
-# bearing's Newton programs: 4.4 -> 3.2 s for the Krylov one, 8.0 -> 5.4 s for the finite
-# JFO bearing; the whole suite on two cores: 730-780 s -> 570 s, measured in one session).
-# The computations are the same; only the code generated for each fused loop differs. Applied
-# to the test processes (and the notebooks and scripts they start) only, never to users'
-# programs, and only when this jaxlib knows the flag (an unknown XLA flag aborts the process);
+# XLA:CPU's classic fusion emitters for the test processes (and the notebooks and scripts
+# they start): most of the suite's time is XLA compiling the solvers' programs, which the
+# newer MLIR emitters take about 1.4x as long over (the suite on two cores: 730-780 s -> 570 s),
+# to the same results up to round-off. Only when this jaxlib accepts the flag (probed once, in
+# the first process that loads this file; pytest-xdist's workers inherit the result);
 # XLA_FLAGS=--xla_cpu_use_fusion_emitters=true runs the suite with the default emitters.
-FAST_COMPILE_FLAG = "--xla_cpu_use_fusion_emitters=false"
-
-
-def _xla_accepts(flag):
-    """Whether a JAX process starts and computes with ``flag`` in XLA_FLAGS (one subprocess,
-    about a second, in the first process that loads this file)."""
-    env = dict(os.environ, XLA_FLAGS=f"{os.environ.get('XLA_FLAGS', '')} {flag}".strip())
-    probe = subprocess.run([sys.executable, "-c", "import jax.numpy as jnp; jnp.zeros(2).block_until_ready()"],
-                           env=env, capture_output=True, timeout=300)
-    return probe.returncode == 0
-
-
 if "VJAX_TEST_XLA_FLAGS_CHECKED" not in os.environ:
-    os.environ["VJAX_TEST_XLA_FLAGS_CHECKED"] = "1"     # pytest-xdist's workers inherit the result
-    if "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "") and _xla_accepts(FAST_COMPILE_FLAG):
-        os.environ["XLA_FLAGS"] = f"{os.environ.get('XLA_FLAGS', '')} {FAST_COMPILE_FLAG}".strip()
+    os.environ["VJAX_TEST_XLA_FLAGS_CHECKED"] = "1"
+    from experiments import _common as _experiments_common
+    if "xla_cpu_use_fusion_emitters" not in os.environ.get("XLA_FLAGS", "") and \
+            _experiments_common.classic_fusion_emitters_accepted():
+        _experiments_common.use_classic_fusion_emitters()
 
 import jax  # noqa: E402
 import pytest  # noqa: E402

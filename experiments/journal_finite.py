@@ -8,7 +8,9 @@ Writes ``journal_finite.txt`` (and prints it): Raimondi and Boyd's table (L/D = 
 Reynolds conditions) on two grids; Ocvirk's short bearing (load ratio at L/D = 0.05, 0.1,
 0.2 on two axial grids); the long-bearing limit (eccentricity against D/L and its
 extrapolation); warm time and Newton steps of one rigid point for grids from 32 x 8 to
-128 x 32 (compile apart; the machine's load average next to them). Case: R = 50 mm,
+256 x 64 and of a point with a polymer liner from 32 x 8 to 64 x 16, and the dynamic
+coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machine's load
+average next to them). Case: R = 50 mm,
 c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 """
 from __future__ import annotations
@@ -97,6 +99,36 @@ def main(out_dir="experiments/out", quick=False):
         med = float(np.median(times))
         lines.append(f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
                      f"{med / its * 1e3:.1f} ms per step")
+    lines += ["", f"Warm time with a 2 mm polymer liner (L/D = 1, Reynolds; dense LU of n (m - 1) + 2 unknowns), "
+              f"load average {os.getloadavg()[0]:.1f}:"]
+    liner = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
+    for n, m in ([(32, 8)] if quick else [(32, 8), (48, 16), (64, 16)]):
+        opt = FiniteJournalOptions(n=n, m=m)
+        run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, housing=liner,  # noqa: E731
+                                             options=opt)
+        t = time.perf_counter()
+        s = run(W)
+        first = time.perf_counter() - t
+        times = []
+        for k in range(3):
+            t = time.perf_counter()
+            s = run(W * (1 + 0.01 * (k + 1)))
+            s.eccentricity.block_until_ready()
+            times.append(time.perf_counter() - t)
+        its, med = int(s.iterations), float(np.median(times))
+        lines.append(f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
+                     f"{med / max(its, 1) * 1e3:.1f} ms per step")
+    whirl = np.linspace(0.0, 2.0 * WJ, 16)
+    lines += ["", "Dynamic coefficients at 16 whirl frequencies (0 ... 2 omega), L/D = 1, 32 x 8, warm (first):"]
+    for name, body in (("rigid", None), ("liner", liner)):
+        call = lambda: vjax.journal_coefficients(R, C, ETA, W, whirl, omega_shaft=WJ, length=D,  # noqa: E731
+                                                 housing=body, options=FiniteJournalOptions(n=32, m=8))
+        t = time.perf_counter()
+        call().stiffness.block_until_ready()
+        first = time.perf_counter() - t
+        t = time.perf_counter()
+        call().stiffness.block_until_ready()
+        lines.append(f"{name}: {time.perf_counter() - t:.3f} s ({first:.1f} s)")
     text = "\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "journal_finite.txt", text + "\n")
