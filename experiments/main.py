@@ -26,7 +26,7 @@ raises stops it (files are written atomically, so nothing half-written is left b
 The stages run side by side in ``--jobs`` worker processes (default: one per CPU), longest
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. Most of a stage is XLA compiling its solvers, one
-core's work: on two cores the full run takes about 3 minutes, against about 4 one stage
+core's work: on two cores the full run takes about 2.5 minutes, against about 4 one stage
 after another.
 """
 from __future__ import annotations
@@ -60,8 +60,8 @@ STAGES = [
     ("bores", "experiments.journal_bores", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (a full run on two
-# cores: roller 76 s, pin 70, journal 68, bodies 54, dynamics 48, bores 15, foundation 8,
-# calibration 4, which bodies waits for), so that the last to finish are short ones
+# cores: roller 81 s, pin 57, journal 55, bodies 40, dynamics 24, bores 7, foundation 6,
+# calibration 3, which bodies waits for), so that the last to finish are short ones
 PRIORITY = [s for name in ("calibration", "roller", "pin", "journal", "bodies", "dynamics", "bores", "foundation")
             for s in STAGES if s[0] == name]
 DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material.json
