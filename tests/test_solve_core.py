@@ -56,3 +56,19 @@ def test_a_step_that_fails_with_a_fresh_jacobian_is_reported_stalled():
     _, _, stats, _ = _solve.newton(no_root, jnp.array([0.5]), 0, tol=1e-12, max_iter=40,
                                    jacobian=jnp.zeros((1, 1)))
     assert int(stats.result) in (_solve.STALLED, _solve.MAX_ITERATIONS, _solve.NONFINITE)
+
+
+def test_stall_window_stops_a_creeping_newton_and_spares_a_converging_one():
+    """r = x^2 + 1 has no root: from x = 3 the line search keeps accepting small decreases
+    towards the floor r = 1, which never halves. With stall_window=5 Newton stops there as
+    STALLED within the window of its last halving; without it, it creeps on. The converging
+    equations above, whose residual halves every step or two, are not stopped by a window of 3."""
+    no_root = lambda x, s: (x ** 2 + 1.0, s, jnp.asarray(True))
+    _, _, creep = _solve.newton(no_root, jnp.array([3.0]), 0, tol=1e-12, max_iter=40)
+    _, _, stopped = _solve.newton(no_root, jnp.array([3.0]), 0, tol=1e-12, max_iter=40, stall_window=5)
+    assert int(stopped.result) == _solve.STALLED
+    assert int(stopped.iterations) < int(creep.iterations)
+    assert int(stopped.iterations) <= 5 + 3        # residual 10 -> halved at most 3 times before the floor
+    x, _, stats = _solve.newton(equations, jnp.zeros(3), 0, tol=1e-14, max_iter=50, stall_window=3)
+    assert int(stats.result) == _solve.SUCCESS
+    np.testing.assert_allclose(np.asarray(x), np.asarray(exact_root()), rtol=0, atol=1e-13)

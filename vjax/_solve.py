@@ -27,7 +27,8 @@ from ._checks import is_concrete
 
 # Result codes (``Stats.result``).
 SUCCESS, MAX_ITERATIONS, STALLED, NONFINITE, INNER_FAILED, NONPHYSICAL = range(6)
-MESSAGES = ("converged", "reached its iteration limit", "line search stalled (no decrease along the Newton step)",
+MESSAGES = ("converged", "reached its iteration limit",
+            "stalled (no decrease along the Newton step, or the residual stopped falling)",
             "produced non-finite values", "an inner solve failed",
             "converged to the non-physical branch")
 
@@ -92,7 +93,7 @@ def report(what: str, stats: Stats, throw: bool) -> None:
 
 
 def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None,
-           jacobian=None, return_jacobian=False):
+           jacobian=None, return_jacobian=False, stall_window=None):
     """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian,
     or with ``linear_solve(x, state, r) -> dx`` solving J dx = -r (a matrix-free Krylov solve).
 
@@ -111,6 +112,10 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     superlinear near the root); otherwise it recomputes it at the current point. A step that
     fails with a kept Jacobian is retried with a fresh one, not reported as stalled. (Under
     ``vmap`` both branches of that choice run: continuation belongs in a loop or ``scan``.)
+
+    ``stall_window``: stop as STALLED when ``max|r|`` has not halved in this many steps (a
+    semismooth Newton caught on a complementarity kink takes tiny accepted steps for as long
+    as it may; a caller with a fallback start wants it back early).
     """
     def fn_aux(x, state):
         out = fn(x, state)
@@ -187,11 +192,22 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
             out += (J, jnp.asarray(False))
         return out
 
+    def body_with_stall(c):
+        out = body(c[:-2])
+        best, k_best = c[-2:]
+        norm = jnp.max(jnp.abs(out[2]))
+        halved = norm <= 0.5 * best
+        best, k_best = jnp.where(halved, norm, best), jnp.where(halved, out[0], k_best)
+        result = jnp.where((out[4] == MAX_ITERATIONS) & (out[0] - k_best >= stall_window), STALLED, out[4])
+        return out[:4] + (result,) + out[5:] + (best, k_best)
+
     init = (0, x0, r0, s0, result0)
     if carry:
         J0 = jnp.zeros((r0.shape[0], x0.shape[0]), r0.dtype) if jacobian is None else jnp.asarray(jacobian, r0.dtype)
         init += (J0, jnp.asarray(reuse))
-    k, x, r, state, result, *kept = jax.lax.while_loop(cond, body, init)
+    if stall_window is not None:
+        init += (jnp.max(jnp.abs(r0)), 0)
+    k, x, r, state, result, *kept = jax.lax.while_loop(cond, body if stall_window is None else body_with_stall, init)
     residual = jnp.where(jnp.all(jnp.isfinite(r)), jnp.max(jnp.abs(r)), jnp.inf)
     stats = Stats(jnp.asarray(k), residual, result)
     return (x, state, stats, kept[0]) if carry else (x, state, stats)

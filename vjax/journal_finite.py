@@ -366,6 +366,12 @@ def _rigid(pr: Params):
     return pr.op_B is None and pr.op_J is None
 
 
+# Newton gives up when its residual has not halved in this many steps: caught on the
+# rupture line's kinks it would otherwise creep for all of max_iter (a lined bearing on 64 x 16:
+# 60 steps at a residual of 0.29) before the half-Sommerfeld restart or the continuation
+STALL_WINDOW = 12
+
+
 def _newton(x0, pr: Params, cfg: Config, relaxed=False):
     """The core's Newton; each step by the block solve for rigid bodies, by a dense LU of the
     Jacobian (from jacfwd) with deformable ones, whose compliance couples every cell of an
@@ -378,7 +384,7 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False):
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
     block_solve = lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
-                                linear_solve=block_solve if _rigid(pr) else None)
+                                linear_solve=block_solve if _rigid(pr) else None, stall_window=STALL_WINDOW)
     return x, stats
 
 
