@@ -299,13 +299,16 @@ def roller_design(out, quick=False):
     # ---- random search over (material, Z, P_d, R_I) with the same number of calls ----
     rng = np.random.default_rng(0)
     samples, rbest, t_rand = [], None, 0.0
+    # --quick (a smoke run) evaluates the random samples with the gradient's program, Jacobian
+    # discarded: one compiled function instead of two; its timings then mean nothing
+    values_only = not quick
     for k in range(n_grad):
         name = list(mats)[rng.integers(len(mats))]
         Z = int(Zs[rng.integers(len(Zs))])
         y = lo + (hi - lo) * rng.uniform(size=2)
-        function(Z, grad=False)
+        function(Z, grad=not values_only)
         t0 = time.perf_counter()
-        v, _, ok = solve(y, name, Z, grad=False)
+        v, _, ok = solve(y, name, Z, grad=not values_only)
         t_rand += time.perf_counter() - t0
         samples.append((name, Z, *y, *v, ok, feasible(v, ok)))
         if feasible(v, ok) and (rbest is None or v[0] < rbest[3][0]):
