@@ -81,33 +81,16 @@ def main(out_dir="experiments/out", quick=False):
                                              options=opt).eccentricity)
         lines.append(f"L/D {LD}: {eps[LD] / e0 - 1:.4e}")
     lines.append(f"extrapolated from 50 and 100: {(2 * eps[100.0] - eps[50.0]) / e0 - 1:.2e}")
-    lines += ["", f"Warm time per rigid point (L/D = 1, Reynolds), load average {os.getloadavg()[0]:.1f}:"]
     W = 0.5 * float(reference.long_bearing(0.5, R, C, ETA, V, "reynolds")["load"]) * D
-    for n, m in ([(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]):
-        opt = FiniteJournalOptions(n=n, m=m)
-        run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, options=opt)  # noqa: E731
-        t = time.perf_counter()
-        s = run(W)
-        first = time.perf_counter() - t
-        times = []
-        for k in range(3):
-            t = time.perf_counter()
-            s = run(W * (1 + 0.01 * (k + 1)))
-            s.eccentricity.block_until_ready()
-            times.append(time.perf_counter() - t)
-        its = int(s.iterations)
-        med = float(np.median(times))
-        lines.append(f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
-                     f"{med / its * 1e3:.1f} ms per step")
-    lines += ["", f"Warm time with a 2 mm polymer liner (L/D = 1, Reynolds; dense LU of n (m - 1) + 2 unknowns), "
-              f"load average {os.getloadavg()[0]:.1f}:"]
     liner = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
-    for n, m in ([(32, 8)] if quick else [(32, 8), (48, 16), (64, 16)]):
+
+    def timing(n, m, housing):
+        """One point's first call and the median of three warm ones (loads 1-3 % higher)."""
         opt = FiniteJournalOptions(n=n, m=m)
-        run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, housing=liner,  # noqa: E731
+        run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, housing=housing,  # noqa: E731
                                              options=opt)
         t = time.perf_counter()
-        s = run(W)
+        run(W).eccentricity.block_until_ready()
         first = time.perf_counter() - t
         times = []
         for k in range(3):
@@ -116,8 +99,15 @@ def main(out_dir="experiments/out", quick=False):
             s.eccentricity.block_until_ready()
             times.append(time.perf_counter() - t)
         its, med = int(s.iterations), float(np.median(times))
-        lines.append(f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
-                     f"{med / max(its, 1) * 1e3:.1f} ms per step")
+        return (f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
+                f"{med / max(its, 1) * 1e3:.1f} ms per step")
+
+    lines += ["", f"Warm time per rigid point (L/D = 1, Reynolds), load average {os.getloadavg()[0]:.1f}:"]
+    lines += [timing(n, m, None) for n, m in ([(32, 8), (64, 16)] if quick else
+                                              [(32, 8), (64, 16), (128, 32), (256, 64)])]
+    lines += ["", f"Warm time with a 2 mm polymer liner (L/D = 1, Reynolds; dense LU of n (m - 1) + 2 unknowns), "
+              f"load average {os.getloadavg()[0]:.1f}:"]
+    lines += [timing(n, m, liner) for n, m in ([(32, 8)] if quick else [(32, 8), (48, 16), (64, 16)])]
     whirl = np.linspace(0.0, 2.0 * WJ, 16)
     lines += ["", "Dynamic coefficients at 16 whirl frequencies (0 ... 2 omega), L/D = 1, 32 x 8, warm (first):"]
     for name, body in (("rigid", None), ("liner", liner)):
