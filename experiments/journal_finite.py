@@ -10,7 +10,7 @@ Reynolds conditions) on two grids; Ocvirk's short bearing (load ratio at L/D = 0
 extrapolation); warm time and Newton steps of one rigid point for grids from 32 x 8 to
 256 x 64 and of a point with a polymer liner from 32 x 8 to 64 x 16, and the dynamic
 coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machine's load
-average next to them). Case: R = 50 mm,
+average next to them); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
 c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 """
 from __future__ import annotations
@@ -108,6 +108,18 @@ def main(out_dir="experiments/out", quick=False):
     lines += ["", f"Warm time with a 2 mm polymer liner (L/D = 1, Reynolds; dense LU of n (m - 1) + 2 unknowns), "
               f"load average {os.getloadavg()[0]:.1f}:"]
     lines += [timing(n, m, liner) for n, m in ([(32, 8)] if quick else [(32, 8), (48, 16), (64, 16)])]
+    lines += ["", "Grid study of K and C (rigid, L/D = 1, Reynolds, groove fixed opposite the load; each 2 x 2 "
+              "matrix over its largest entry): the largest change from the grid before"]
+    previous = None
+    for n, m in ([(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]):
+        co = vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=WJ, length=D,
+                                       options=FiniteJournalOptions(n=n, m=m))
+        K, Cd = (np.asarray(a).reshape(2, 2) for a in (co.stiffness, co.damping))
+        scaled = np.concatenate([K.ravel() / np.abs(K).max(), Cd.ravel() / np.abs(Cd).max()])
+        change = "" if previous is None else f", change {np.max(np.abs(scaled - previous)):.2e}"
+        lines.append(f"{n}x{m}: K (MN/m) {np.array2string(K.ravel() / 1e6, precision=2)}, "
+                     f"C (kN s/m) {np.array2string(Cd.ravel() / 1e3, precision=1)}{change}")
+        previous = scaled
     whirl = np.linspace(0.0, 2.0 * WJ, 16)
     lines += ["", "Dynamic coefficients at 16 whirl frequencies (0 ... 2 omega), L/D = 1, 32 x 8, warm (first):"]
     for name, body in (("rigid", None), ("liner", liner)):
