@@ -87,7 +87,6 @@ from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, referenc
 from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, circulant, grid, memory_revolutions
 
-CAVITATION = ("reynolds", "jfo", "half_sommerfeld", "sommerfeld")
 GROOVES = ("fixed", "circumferential")
 
 
@@ -584,9 +583,7 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
     _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
     _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
-    if cavitation not in CAVITATION:
-        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
-                         f"got {cavitation!r}")
+    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
     Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
         raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
@@ -716,9 +713,7 @@ def check_supported(length, groove, cavitation):
     if groove not in (None,) + GROOVES:
         raise ValueError(f"groove must be 'fixed' (an axial groove fixed in the bearing) or 'circumferential' "
                          f"with length=, got {groove!r}")
-    if cavitation not in CAVITATION:
-        raise ValueError(f"cavitation must be one of {sorted(CAVITATION)} with length= (the finite bearing), "
-                         f"got {cavitation!r}")
+    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
 
 
 def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
@@ -734,6 +729,24 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
                                   options=options, throw=throw)
 
 
+def _pressure_solver(cells, pz, cfg: Config):
+    """Solve with the rigid film's Jacobian d cells / d pz at pz (the pressures alone, the
+    position held: block tridiagonal, :mod:`vjax._blocks`)."""
+    blocks = _blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1)
+    empty = jnp.zeros((pz.shape[0], 0), pz.dtype)
+    return _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), pz.dtype))[0]
+
+
+def _response(cells, loads, pz, q0, cfg: Config):
+    """-d loads / d q of the rigid film whose pressures stay in balance, ``cells(pz, q) = 0``,
+    at (pz, q0): with A = d cells/d pz, B = d cells/d q, G = d loads/d pz, dpz = -A^-1 B dq and
+    the response is G A^-1 B (loads (k,), q (j,): (k, j))."""
+    solve = _pressure_solver(lambda p: cells(p, q0), pz, cfg)
+    B = jax.jacfwd(lambda q: cells(pz, q))(q0)
+    G = jax.jacrev(loads)(pz)
+    return G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)
+
+
 @partial(jax.jit, static_argnums=(2,))
 def stiffness_damping(x0, pr: Params, cfg: Config):
     """K and C (N/m, N s/m; absolute axes) of the rigid finite film about the steady unknowns
@@ -745,15 +758,9 @@ def stiffness_damping(x0, pr: Params, cfg: Config):
     K = G A^-1 B[:, :2], C = G A^-1 B[:, 2:] (dF = -(K dx + C dx/dt)); independent of the whirl
     frequency for a rigid film. A from the block solver; differentiable through x0."""
     N = _unknowns(cfg)
-    motion0 = jnp.zeros(4, x0.dtype)
     cells = lambda pz, mo: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, mo)[0]
     force = lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1]
-    blocks = _blocks.neighbourhood_blocks(lambda pz: cells(pz, motion0), x0[:N], cfg.n, cfg.m - 1)
-    empty = jnp.zeros((N, 0), x0.dtype)
-    solve, _ = _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x0.dtype))
-    B = jax.jacfwd(lambda mo: cells(x0[:N], mo))(motion0)              # (N, 4)
-    G = jax.jacrev(force)(x0[:N])                                       # (2, N)
-    KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (2, 4) = -dF/d(motion)
+    KC = _response(cells, force, x0[:N], jnp.zeros(4, x0.dtype), cfg)    # (2, 4) = -dF/d(motion)
     rot = _rotation(pr.frame)
     return rot @ KC[:, :2] @ rot.T, rot @ KC[:, 2:] @ rot.T
 
@@ -786,12 +793,7 @@ def tilt_stiffness_damping(x0, pr: Params, cfg: Config):
         f = fields(jnp.concatenate([pz, x0[N:]]), pr, cfg)
         return jnp.concatenate(_film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R))
 
-    blocks = _blocks.neighbourhood_blocks(lambda pz: cells(pz, zero), x0[:N], n, m - 1)
-    empty = jnp.zeros((N, 0), x0.dtype)
-    solve, _ = _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x0.dtype))
-    B = jax.jacfwd(lambda q: cells(x0[:N], q))(zero)                   # (N, 8)
-    G = jax.jacrev(loads)(x0[:N])                                       # (4, N)
-    KC = G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)                 # (4, 8) = -dQ/d(q, dq/dt)
+    KC = _response(cells, loads, x0[:N], zero, cfg)                    # (4, 8) = -dQ/d(q, dq/dt)
     rot = jnp.kron(jnp.eye(2, dtype=x0.dtype), _rotation(pr.frame))
     return rot @ KC[:, :4] @ rot.T, rot @ KC[:, 4:] @ rot.T
 
@@ -901,12 +903,7 @@ def force_at(x, pr: Params, cfg: Config, motion):
         raise ValueError("force_at: rigid bodies only (housing=None, shaft=None)")
     N = _unknowns(cfg)
     cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[0]
-    empty = jnp.zeros((N, 0), x.dtype)
-
-    def linear_solve(pz, state, r):
-        blocks = _blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1)
-        return _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), x.dtype))[0](-r)
-
+    linear_solve = lambda pz, state, r: _pressure_solver(cells, pz, cfg)(-r)    # noqa: E731
     pz, _, stats = _solve.newton(lambda pz, s: (cells(pz), s, True), x[:N], None, tol=cfg.tol,
                                  max_iter=cfg.max_iter, linear_solve=linear_solve)
     return cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, motion)[1], stats
