@@ -19,9 +19,14 @@ def pin(load=2800.0, throw=True, **options):
                             throw=throw)
 
 
+# test_roller.py's bearing, materials and grid: the two files then share the roller's compiled
+# programs (through the suite's persistent compilation cache) instead of compiling their own
+ROLLER_N = 256
+
+
 def roller(load=39.0, throw=True, **options):
     return vjax.roller_bearing(SLS, SLS, 6e-3, 4e-3, 2e-3, 9, load, omega_shaft=10.0,
-                               options=RollerOptions(n=64, **options), throw=throw)
+                               options=RollerOptions(n=ROLLER_N, **options), throw=throw)
 
 
 def journal(load=2e4, throw=True, **options):
@@ -104,8 +109,8 @@ def test_under_vmap_one_failed_point_raises_for_the_batch():
 def test_every_scene_warm_starts_from_a_previous_result():
     p0, r0, j0 = pin(), roller(), journal()
     p1 = vjax.pin_in_hole(SLS, 0.08, 0.005, 2800.0, omega_shaft=-5.0, options=PinOptions(n=64), initial=p0)
-    r1 = vjax.roller_bearing(SLS, SLS, 6e-3, 4e-3, 2e-3, 9, 39.0, omega_shaft=10.0, options=RollerOptions(n=64),
-                             initial=r0)
+    r1 = vjax.roller_bearing(SLS, SLS, 6e-3, 4e-3, 2e-3, 9, 39.0, omega_shaft=10.0,
+                             options=RollerOptions(n=ROLLER_N), initial=r0)
     j1 = vjax.journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=32), initial=j0)
     for cold, warm in ((p0, p1), (r0, r1), (j0, j1)):
         assert int(warm.iterations) < int(cold.iterations)
