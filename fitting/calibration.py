@@ -208,17 +208,15 @@ def _few_terms(table, fit, n):
     """``n`` terms with free relaxation times from the smooth ``fit``: :func:`fitting.compact.fit_terms`
     to the points under the fit's law (times within the data's reduced-time window plus
     ``compact.MARGIN_DECADES``), refined end to end with the law (:func:`fitting.prony.refine`,
-    same window). Three starts, times log-spaced from edge to edge of the window, at the
-    centres of n equal cells of it, and placed where the loss modulus needs them
-    (:func:`fitting.compact.placement`); the lower cost is kept (the refinement has local
-    minima, some 20 % apart in loss error)."""
+    same window). Two starts, times log-spaced from edge to edge of the window and at the
+    centres of n equal cells of it; the lower cost is kept (the refinement has local minima,
+    some 20 % apart in loss error)."""
     wr = table.omega * 10.0 ** evaluate.log10_aT(fit.shift, table.T)
     m = fit.material
     full = compact.Series(float(m.E0), np.asarray(m.moduli), np.asarray(m.times))
     lo, hi = -math.log10(wr.max()), -math.log10(wr.min())
     best = None
-    for times in (None, 10.0 ** (lo + (hi - lo) * (np.arange(n) + 0.5) / n),
-                  compact.placement(full, (wr.min(), wr.max()), n)):
+    for times in (None, 10.0 ** (lo + (hi - lo) * (np.arange(n) + 0.5) / n)):
         s = compact.fit_terms(full, n, (wr.min(), wr.max()), target=(wr, table.storage, table.loss), times=times,
                               **compact.DATA_FIT)
         f = prony.refine(table, Material.prony(s.E0, s.moduli, s.times, m.nu), fit.shift, max_iter=300,
