@@ -45,13 +45,18 @@ Where each convention comes from, and what was checked (docs/fem_export.md has t
 LS-DYNA Keyword User's Manual, vol. II, ``*MAT_GENERAL_VISCOELASTIC`` (``*MAT_076``), card 1
 and remarks: the layout (MID RO BULK PCF EF TREF A B / LCID NT BSTART TRAMP LCIDK NTK BSTARTK
 TRAMPK / up to six GI BETAI KI BETAKI) and the meaning of TREF, A, B are confirmed by
-OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg``; the shift
-formula Phi = exp(-A (T - TREF)/(B + T - TREF)) (natural exponential) and its Arrhenius form
-(B = 0) were NOT found as quoted manual text (they are the form commonly quoted for MAT_076): check a written card
-with the check values in its header on the solver. ANSYS Mechanical APDL Command Reference
-``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift Functions": the WLF
-field order is confirmed by pyvisco's ANSYS card ``tests/data/E1_WLF.USER_MPL``; the base 10
-of its logarithm and the two TN constants (Tr, H/R) are not confirmed by quoted text.
+OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg`` and by Ansys'
+PyDyna keyword classes (github.com/ansys/pydyna, ``MatGeneralViscoelastic``: A "Coefficient
+for the Arrhenius and the Williams-Landau-Ferry shift function", B "Coefficient for
+Williams-Landau-Ferry shift function", TREF "must be greater than zero", "Define up to six
+cards"); the shift formulas Phi = exp(-A (T - TREF)/(B + T - TREF)) (WLF) and
+Phi = exp(-A (1/T - 1/TREF)) (B = 0), time multiplied by Phi, were found only as a second-hand
+quote of the R16 manual's remarks (a third-party card writer's source), not on a manual page:
+check a written card with the check values in its header on the solver. ANSYS Mechanical APDL
+Command Reference ``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift
+Functions": the WLF field order is confirmed by pyvisco's ANSYS card
+``tests/data/E1_WLF.USER_MPL``; the base 10 of its logarithm and the two TN constants (Tr, H/R)
+are not confirmed by quoted text.
 
 Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
 terms whose medians on the DMA data stay within 1.5x of the full fit's and whose loss modulus
