@@ -233,21 +233,32 @@ def test_every_format_reads_back(tmp_path, d, units, temperature):
         _check(d, fmt, str(tmp_path), "mat", units, 0.42, temperature, rho=1150.0)
 
 
-@pytest.mark.parametrize("wrong_A", [lambda C1: C1, lambda C1: C1 * math.log(10)], ids=["A=C1", "A=+C1ln10"])
-def test_lsdyna_check_fails_when_A_is_C1(tmp_path, monkeypatch, wrong_A):
+_WLF_STD = dict(WLF_MAT, shift=dict(WLF_MAT["shift"], C1=17.4, C2=51.6))
+_WRONG_A = {  # what a convention error would write into A, for each law
+    "A=C1": (_WLF_STD, lambda m: m.shift["C1"]),
+    "A=+C1ln10": (_WLF_STD, lambda m: m.shift["C1"] * math.log(10)),
+    "Arrhenius A=Ea/(R ln10)": (ARR_MAT, lambda m: m.shift["Ea"] / (R * math.log(10))),
+    "Arrhenius A=-Ea/R": (ARR_MAT, lambda m: -m.shift["Ea"] / R),
+}
+
+
+@pytest.mark.parametrize("case", list(_WRONG_A))
+def test_lsdyna_check_fails_when_A_is_wrong(tmp_path, monkeypatch, case):
     """The LS-DYNA check can fail: with the base-10 constant A = C1 written (the old card),
     the documented Phi puts log10 a_T 10 decades off at -20 C; a sign error alone (A = +C1 ln
-    10) is caught too. The header says why A is negative."""
-    path = _write(tmp_path, dict(WLF_MAT, shift=dict(WLF_MAT["shift"], C1=17.4, C2=51.6)))
+    10) is caught too, and so are an Arrhenius A in base 10 or of the wrong sign. The header
+    says why a WLF A is negative."""
+    d, wrong = _WRONG_A[case]
+    path = _write(tmp_path, d)
     args = [path, "--format", "lsdyna", "--nu", "0.42", "--temperature", "K", "--density", "1150", "--full-spectrum"]
-    d = json.loads(open(path).read())
     assert export_cli.main(args) == 0
     _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
     text = open(card_paths("lsdyna", str(tmp_path), "mat", "K")[0]).read()
-    assert "A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T)" in text
-    assert re.search(r"check .*log10 a_T at 278.15 K = ", text)
-    monkeypatch.setattr(export, "lsdyna_shift",
-                        lambda m, T_unit: (m.T_ref + 273.15, wrong_A(m.shift["C1"]), m.shift["C2"]))
+    if d["shift"]["law"] == "WLF":
+        assert "A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T)" in text
+    assert re.search(r"check .*log10 a_T at \S+ K = ", text)
+    B = d["shift"]["C2"] if d["shift"]["law"] == "WLF" else 0.0
+    monkeypatch.setattr(export, "lsdyna_shift", lambda m, T_unit: (m.T_ref + 273.15, wrong(m), B))
     assert export_cli.main(args) == 0
     with pytest.raises(AssertionError, match="log10 a_T"):
         _check(d, "lsdyna", str(tmp_path), "mat", "SI", 0.42, "K", T=[-20.0, 25.0, 80.0])
