@@ -52,8 +52,8 @@ import numpy as np
 from . import optim
 from .evaluate import loss_extrema
 
-__all__ = ["Series", "Choice", "fit_terms", "choose", "deviation", "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES",
-           "MAX_EXTREMA"]
+__all__ = ["Series", "Choice", "fit_terms", "placed_terms", "placement", "ripple", "choose", "deviation",
+           "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES", "MAX_EXTREMA"]
 
 MAX_TERMS = 20
 TOLERANCE = 1.5
