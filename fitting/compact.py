@@ -121,6 +121,14 @@ def _moduli(series: Series, w):
     return series.E0 + ps @ Ek, pl @ Ek
 
 
+def _window(window):
+    """(omega_min, omega_max) of ``window`` (rad/s), checked."""
+    lo, hi = (float(v) for v in window)
+    if not (0 < lo < hi and math.isfinite(hi)):
+        raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
+    return lo, hi
+
+
 def _samples(window, per_decade=SAMPLES_PER_DECADE):
     lo, hi = (math.log10(v) for v in window)
     return 10.0 ** np.linspace(lo, hi, max(int(math.ceil((hi - lo) * per_decade)) + 1, 40))
@@ -162,9 +170,7 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
     if times is not None and not (np.shape(times) == (n,) and np.all(np.asarray(times, float) > 0)):
         raise ValueError(f"times must be {n} positive relaxation times (s), got {times!r}")
-    lo, hi = (float(v) for v in window)
-    if not (0 < lo < hi and math.isfinite(hi)):
-        raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
+    lo, hi = _window(window)
     if target is None:
         w = _samples((lo, hi))
         st, ls = _moduli(full, w)
@@ -237,7 +243,7 @@ def placement(full: Series, window, n: int, margin: float = MARGIN_DECADES) -> n
     ``margin`` decades each side (tau = 1/omega)."""
     if not (isinstance(n, int) and n >= 1):
         raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
-    lo, hi = (math.log10(float(v)) for v in window)
+    lo, hi = (math.log10(v) for v in _window(window))
     x = np.linspace(lo - margin, hi + margin, max(200, int(100 * (hi - lo + 2 * margin))))
     _, pl, _, _ = _arms(10.0 ** x, np.asarray(full.times, float))
     slope = np.abs(np.gradient(np.log10(pl @ np.asarray(full.moduli, float)), x))

@@ -53,6 +53,8 @@ def test_choose_needs_data_or_the_recorded_errors():
         compact.choose(TRUE, WINDOW)
     with pytest.raises(ValueError, match="window"):
         compact.fit_terms(TRUE, 3, (1.0, 0.5))
+    with pytest.raises(ValueError, match="window"):
+        compact.placement(TRUE, (1.0, -2.0), 3)
 
 
 @pytest.mark.parametrize("h", [0.8, 1.0, 1.5])
