@@ -2,17 +2,26 @@
 
 A smooth spectrum (:mod:`fitting.spectrum`) puts three relaxation times in every decade of
 the data's reduced range plus a decade each side: 60 to 100 terms, each of which is internal
-state at every integration point of an FEM model. Over the data's window far fewer hold
-the same accuracy. :func:`fit_terms` fits ``n`` terms with free relaxation times to the full
-series' storage and loss moduli (log residuals, both with weight one, at
-``SAMPLES_PER_DECADE`` reduced frequencies a decade over the window), Levenberg-Marquardt
-from a non-negative least-squares start at log-spaced times (:mod:`fitting.optim`); a penalty
-keeps every relaxation time within the window's reduced-time range widened by
-``MARGIN_DECADES``, so no term relaxes where nothing was measured (never 1e-20 s).
+state at every integration point of an FEM model. Over the data's window fewer hold the same
+accuracy and smoothness. Two kinds of n-term series, every relaxation time within the
+window's reduced-time range widened by ``MARGIN_DECADES`` (no term relaxes where nothing was
+measured; never 1e-20 s):
 
-How the count is chosen (:func:`choose`): the smallest n up to ``max_terms`` (default
-``MAX_TERMS`` = 20; found by bisection, accuracy growing with n nearly monotonically) whose
-series
+* :func:`placed_terms` (smooth): times placed where the loss modulus needs them
+  (:func:`placement`), moduli by non-negative least squares on the full fit's storage and loss;
+* :func:`fit_terms` (free, accurate with few terms, rippled): free times and moduli,
+  Levenberg-Marquardt on log residuals from a non-negative least-squares start
+  (:mod:`fitting.optim`), to the DMA points (robust) or to the full series.
+
+Why placement decides smoothness: a Prony loss modulus is a sum of Debye peaks; terms h
+decades apart leave a ripple of relative amplitude 2 sech(pi^2 / (h ln 10)) (:func:`ripple`:
+5.5 % at h = 1, 1.9 % at 0.8, 23 % at 1.5), which adds local extrema wherever the material's
+own log-log loss slope is smaller than the ripple's slope (0.15 at h = 1, 0.06 at 0.8). DMA
+loss curves are that flat over much of their reduced range (the shipped sets: |slope| < 0.07
+over 13-16 of their 26-40 decades), so a smooth series needs about 1.5 terms a decade there
+and fewer where the loss is steep.
+
+How the count is chosen (:func:`choose`): the smallest n at which one of the two series
 
 * is as accurate as the full fit within ``TOLERANCE``: its median |log10(model/measured)| on
   the DMA points is at most ``TOLERANCE`` (1.5) times the full fit's, for storage and loss
@@ -22,12 +31,13 @@ series
 * is smooth: its loss modulus has at most ``MAX_EXTREMA`` (3) local extrema over the window
   (or no more than the full fit's, if that has more),
 
-is kept (``met`` True). If none up to ``max_terms`` qualifies, the smallest accurate one is
-kept, or ``max_terms`` terms if none is accurate, and :class:`Choice` says so (``met`` False).
-Over many decades few terms cannot give a loss modulus free of ripple: each term's loss peak
-is 1.14 decades wide (half height), and terms 1.35 decades apart (20 over 27 decades) leave
-a ripple of about +-8 % whose every wiggle is a local extremum; smoothness in that strict
-sense takes about 3 terms a decade (the smooth fit's grid).
+is kept (``met`` True); the free series is tried up to ``MAX_TERMS`` (20) terms, the placed one
+up to the full fit's count or a cap ``max_terms``; the counts tried double from 1 until one
+qualifies, then bisect below it. With a cap too small for smoothness the
+smallest accurate count is kept, or the cap if none is accurate, and :class:`Choice` says so
+(``met`` False). Measured on the shipped data (README, ``python -m experiments.fem_export``):
+smoothness takes 39-44 terms over their 26-40 decades; 20 terms leave a ripple of 28-36
+extrema.
 
 Moduli are in the series' own unit (Pa), times in s, frequencies in rad/s (reduced, at the
 material's T_ref).
@@ -42,8 +52,8 @@ import numpy as np
 from . import optim
 from .evaluate import loss_extrema
 
-__all__ = ["Series", "Choice", "fit_terms", "choose", "deviation", "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES",
-           "MAX_EXTREMA"]
+__all__ = ["Series", "Choice", "fit_terms", "placed_terms", "placement", "ripple", "choose", "deviation",
+           "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES", "MAX_EXTREMA"]
 
 MAX_TERMS = 20
 TOLERANCE = 1.5
@@ -111,9 +121,17 @@ def _moduli(series: Series, w):
     return series.E0 + ps @ Ek, pl @ Ek
 
 
-def _samples(window):
+def _window(window):
+    """(omega_min, omega_max) of ``window`` (rad/s), checked."""
+    lo, hi = (float(v) for v in window)
+    if not (0 < lo < hi and math.isfinite(hi)):
+        raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
+    return lo, hi
+
+
+def _samples(window, per_decade=SAMPLES_PER_DECADE):
     lo, hi = (math.log10(v) for v in window)
-    return 10.0 ** np.linspace(lo, hi, max(int(math.ceil((hi - lo) * SAMPLES_PER_DECADE)) + 1, 40))
+    return 10.0 ** np.linspace(lo, hi, max(int(math.ceil((hi - lo) * per_decade)) + 1, 40))
 
 
 def deviation(series: Series, full: Series, window) -> dict:
@@ -152,9 +170,7 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
     if times is not None and not (np.shape(times) == (n,) and np.all(np.asarray(times, float) > 0)):
         raise ValueError(f"times must be {n} positive relaxation times (s), got {times!r}")
-    lo, hi = (float(v) for v in window)
-    if not (0 < lo < hi and math.isfinite(hi)):
-        raise ValueError(f"window must be 0 < omega_min < omega_max (rad/s), got {window!r}")
+    lo, hi = _window(window)
     if target is None:
         w = _samples((lo, hi))
         st, ls = _moduli(full, w)
@@ -179,7 +195,7 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
     pen = 10.0
 
     def resid_jac(x):
-        E0, Ek, lt = math.exp(x[0]), np.exp(x[1:n + 1]), x[n + 1:]
+        E0, Ek, lt = float(np.exp(x[0])), np.exp(x[1:n + 1]), x[n + 1:]
         rs, Js = [], []
         for kind, xs, y, wt in parts:
             k, dk, e0 = _kernel(kind, xs, np.exp(lt))
@@ -202,16 +218,70 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
     return Series(float(math.exp(x[0]) * scale), np.exp(x[1:n + 1])[order] * scale, np.exp(x[n + 1:])[order])
 
 
-def choose(full: Series, window, errors_of=None, reference=None, target=None, max_terms: int = MAX_TERMS,
+def ripple(spacing):
+    """Ripple of a Maxwell sum whose relaxation times are ``spacing`` decades apart (array or
+    float): (relative amplitude of E'', amplitude of the ripple's slope d log10 E'' / d log10
+    omega). Each term's loss is a Debye peak 1/(2 cosh u) in u = ln(omega tau); the first
+    Fourier harmonic of the sum of peaks a period P = spacing ln 10 apart is 2 sech(pi^2 / P)
+    of the mean (a flat spectrum): 5.5 % at 1 decade, 1.9 % at 0.8, 23 % at 1.5."""
+    h = np.asarray(spacing, float)
+    amp = 2.0 / np.cosh(np.pi ** 2 / (h * LN10))
+    return amp, amp / LN10 * (2.0 * np.pi / h)
+
+
+_SPACINGS = np.linspace(0.2, 4.0, 400)          # decades: the spacings placement() chooses from
+
+
+def placement(full: Series, window, n: int, margin: float = MARGIN_DECADES) -> np.ndarray:
+    """``n`` relaxation times (s, increasing) placed where ``full``'s loss modulus needs them.
+
+    A ripple makes local extrema only where the curve's own log-log slope s = d log10 E'' /
+    d log10 omega is smaller than the ripple's slope (:func:`ripple`). The local spacing is
+    the largest h (0.2 to 4 decades) whose ripple slope is below |s| of ``full`` there: dense
+    near the loss peak and on flat plateaus, coarse where E'' is steep. The times are the
+    ``n`` quantiles of that density (1/h) over ``window`` (rad/s, reduced) widened by
+    ``margin`` decades each side (tau = 1/omega)."""
+    if not (isinstance(n, int) and n >= 1):
+        raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
+    lo, hi = (math.log10(v) for v in _window(window))
+    x = np.linspace(lo - margin, hi + margin, max(200, int(100 * (hi - lo + 2 * margin))))
+    _, pl, _, _ = _arms(10.0 ** x, np.asarray(full.times, float))
+    slope = np.abs(np.gradient(np.log10(pl @ np.asarray(full.moduli, float)), x))
+    ok = ripple(_SPACINGS)[1][None, :] < slope[:, None]
+    density = 1.0 / np.where(ok, _SPACINGS[None, :], _SPACINGS[0]).max(axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(x))])
+    return np.sort(10.0 ** -np.interp((np.arange(n) + 0.5) / n, cum / cum[-1], x))
+
+
+def placed_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES) -> Series:
+    """``n`` terms at :func:`placement`'s times, moduli (and E0) by non-negative least squares
+    on ``full``'s storage and loss over ``window`` (rad/s; relative residuals at
+    ``2 * SAMPLES_PER_DECADE`` frequencies a decade). Fitted to the smooth full series rather
+    than to the scattered points, so the series keeps its smoothness (a fit to the points
+    moves times and moduli to chase scatter and leaves bumps)."""
+    tau = placement(full, window, n, margin)
+    w = _samples(window, 2 * SAMPLES_PER_DECADE)
+    st, ls = _moduli(full, w)
+    ps, pl, _, _ = _arms(w, tau)
+    A = np.vstack([np.hstack([np.ones((len(w), 1)), ps]) / st[:, None],
+                   np.hstack([np.zeros((len(w), 1)), pl]) / ls[:, None]])
+    x, _ = optim.nnls(A, np.ones(A.shape[0]))
+    return Series(float(x[0]), x[1:], tau)
+
+
+def choose(full: Series, window, errors_of=None, reference=None, target=None, max_terms: int | None = None,
            tolerance: float = TOLERANCE) -> Choice:
-    """The fewest terms that hold ``full``'s accuracy (module docstring).
+    """The fewest terms that hold ``full``'s accuracy and are smooth (module docstring).
 
     ``errors_of(series) -> dict`` gives a series' errors on the DMA data (keys
     ``storage_median``, ``loss_median`` or ``relaxation_median``); without it, ``reference``
     (the full fit's recorded errors on the data, same keys) bounds the deviation from the
-    full fit over ``window`` (rad/s)."""
+    full fit over ``window`` (rad/s). ``target``: the DMA points for the free-time candidate
+    (:func:`fit_terms`). ``max_terms``: a cap on the count (default: ``full``'s own count)."""
     if errors_of is None and not reference:
         raise ValueError("choose needs the DMA data (errors_of) or the full fit's recorded errors (reference)")
+    if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 1):
+        raise ValueError(f"max_terms must be an integer >= 1, got {max_terms!r}")
     if errors_of is not None:
         basis, ref = "data", errors_of(full)
         keys = [k for k in ("storage_median", "loss_median", "relaxation_median") if k in ref]
@@ -226,19 +296,34 @@ def choose(full: Series, window, errors_of=None, reference=None, target=None, ma
         limit = {k: (tolerance - 1.0) * ref[k] for k in keys}
         measure = lambda s: deviation(s, full, window)  # noqa: E731
     max_ext = max(MAX_EXTREMA, loss_extrema(full, *window))
+    cap = int(max_terms) if max_terms is not None else max(len(full.times), 1)
     fits = {}
 
     def run(n):
+        """(series, errors, extrema, worst error / limit) of the better candidate at n terms:
+        smooth and accurate first, then accurate, then the smaller error."""
         if n not in fits:
-            s = fit_terms(full, n, window, target=target, **(DATA_FIT if target is not None else {}))
-            e = measure(s)
-            fits[n] = (s, e, loss_extrema(s, *window), max(e[k] / limit[k] for k in keys))
+            cands = [placed_terms(full, n, window)]
+            if n <= MAX_TERMS:
+                cands.append(fit_terms(full, n, window, target=target, **(DATA_FIT if target is not None else {})))
+            rows = []
+            for s in cands:
+                e = measure(s)
+                rows.append((s, e, loss_extrema(s, *window), max(e[k] / limit[k] for k in keys)))
+            fits[n] = min(rows, key=lambda r: (not (r[3] <= 1.0 and r[2] <= max_ext), r[3] > 1.0, r[3]))
         return fits[n]
 
     def smallest(ok):
-        """Bisection for the smallest n with ok(n), given ok(max_terms) (accuracy grows with
-        n nearly monotonically; a count between two tried ones is not tried twice)."""
-        lo, hi = 0, int(max_terms)
+        """The smallest n <= cap with ok(n), or None: doubling from 1 up to the first n with
+        ok(n), then bisection below it (accuracy and smoothness grow with n nearly
+        monotonically, but not beyond: least squares on many close times picks a sparse subset
+        of them and ripples again, so the search never starts from the cap)."""
+        hi = 1
+        while not ok(hi):
+            if hi >= cap:
+                return None
+            hi = min(2 * hi, cap)
+        lo = hi // 2
         while hi - lo > 1:
             mid = (lo + hi) // 2
             lo, hi = (lo, mid) if ok(mid) else (mid, hi)
@@ -246,12 +331,10 @@ def choose(full: Series, window, errors_of=None, reference=None, target=None, ma
 
     accurate = lambda n: run(n)[3] <= 1.0  # noqa: E731
     smooth = lambda n: accurate(n) and run(n)[2] <= max_ext  # noqa: E731
-    if smooth(max_terms):
-        n, met = smallest(smooth), True
-    elif accurate(max_terms):
-        n, met = smallest(accurate), False
-    else:
-        n, met = int(max_terms), False
+    n = smallest(smooth)
+    met = n is not None
+    if not met:
+        n = smallest(accurate) or cap
     s, e, ext, _ = run(n)
     tried = tuple((k, {q: v[1][q] for q in keys}, v[2]) for k, v in sorted(fits.items()))
     return Choice(s, met, accurate(n), e, ref, ext, basis, tried)

@@ -45,16 +45,24 @@ Where each convention comes from, and what was checked (docs/fem_export.md has t
 LS-DYNA Keyword User's Manual, vol. II, ``*MAT_GENERAL_VISCOELASTIC`` (``*MAT_076``), card 1
 and remarks: the layout (MID RO BULK PCF EF TREF A B / LCID NT BSTART TRAMP LCIDK NTK BSTARTK
 TRAMPK / up to six GI BETAI KI BETAKI) and the meaning of TREF, A, B are confirmed by
-OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg``; the shift
-formula Phi = exp(-A (T - TREF)/(B + T - TREF)) (natural exponential) and its Arrhenius form
-(B = 0) were NOT found as quoted manual text (they are the form commonly quoted for MAT_076): check a written card
-with the check values in its header on the solver. ANSYS Mechanical APDL Command Reference
-``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift Functions": the WLF
-field order is confirmed by pyvisco's ANSYS card ``tests/data/E1_WLF.USER_MPL``; the base 10
-of its logarithm and the two TN constants (Tr, H/R) are not confirmed by quoted text.
+OpenRadioss's keyword file ``hm_cfg_files/config/CFG/Keyword971/MAT/mat_076.cfg`` and by Ansys'
+PyDyna keyword classes (github.com/ansys/pydyna, ``MatGeneralViscoelastic``: A "Coefficient
+for the Arrhenius and the Williams-Landau-Ferry shift function", B "Coefficient for
+Williams-Landau-Ferry shift function", TREF "must be greater than zero", "Define up to six
+cards"); the shift formulas Phi = exp(-A (T - TREF)/(B + T - TREF)) (WLF) and
+Phi = exp(-A (1/T - 1/TREF)) (B = 0), time multiplied by Phi, were found only as a second-hand
+quote of the R16 manual's remarks (a third-party card writer's source), not on a manual page:
+check a written card with the check values in its header on the solver. ANSYS Mechanical APDL
+Command Reference ``TB`` (TB,SHIFT, TBOPT = WLF: Tr, C1, C2) and Material Reference "Shift
+Functions": the WLF field order is confirmed by pyvisco's ANSYS card
+``tests/data/E1_WLF.USER_MPL``; the base 10 of its logarithm and the two TN constants (Tr, H/R)
+are not confirmed by quoted text.
 
 Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
-terms, at most 20, whose medians on the DMA data stay within 1.5x of the full fit's. A code
+terms whose medians on the DMA data stay within 1.5x of the full fit's and whose loss modulus
+has at most 3 local extrema over the data (times placed where the loss needs them: 39-44
+terms over the shipped data's 26-40 decades); ``max_terms`` caps the count (20 terms hold the
+accuracy there but ripple, and the note says so). A code
 with a card limit gets the best series of that many terms over the user's working window
 (``window``, default the data's): a refit, never a truncation, whose accuracy is printed and
 written into the file. The temperature scale has no default (``temperature='K'`` or ``'C'``,
@@ -333,8 +341,9 @@ def _pct(v) -> str:
 
 
 def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=None, messages=None) -> FEMMaterial:
-    """The series to write. ``terms``: 'compact' (default; :func:`fitting.compact.choose`,
-    at most ``max_terms`` or 20 terms) or 'full' (all terms, refused above ``max_terms``).
+    """The series to write. ``terms``: 'compact' (default; :func:`fitting.compact.choose`: the
+    fewest terms that hold the full fit's accuracy and are smooth, at most ``max_terms`` if
+    given) or 'full' (all terms, refused above ``max_terms``).
     ``limit``: the code's card limit (:data:`CARD_LIMIT`, G_inf included): a series with more
     terms is refit to ``limit - 1`` decaying terms over ``window`` = (t_min, t_max) (s,
     reduced time at T_ref; default the data's window), its accuracy there in the note.
@@ -352,8 +361,8 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
             raise ValueError(f"the material has {len(m.G)} Prony terms, more than --max-terms {max_terms}; drop "
                              f"--full-spectrum to write a compact refit of at most {max_terms} terms")
     else:
-        cap = min(max_terms or compact.MAX_TERMS, len(m.G)) if len(m.G) else 1
-        if data is None and not m.errors and len(m.G) <= (max_terms or compact.MAX_TERMS):
+        cap = min(max_terms, len(m.G)) if max_terms else None
+        if data is None and not m.errors and (max_terms is None or len(m.G) <= max_terms):
             say(f"{len(m.G)} terms kept as fitted (no DMA data or recorded errors to check a refit against)")
             return m if not limit else prepare(m, "full", None, window, limit, messages)
         if data is not None:
@@ -371,9 +380,10 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                 else "median deviation from the full fit over the data window")
         verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and is smooth" if c.met else
                    f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but is NOT smooth (no series of at "
-                   f"most {cap} terms over {math.log10(wdata[1] / wdata[0]):.0f} decades is free of ripple)"
+                   f"most {cap} terms over {math.log10(wdata[1] / wdata[0]):.0f} decades is free of ripple; drop "
+                   f"--max-terms for the smooth series)"
                    if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the best "
-                   f"of at most {cap} terms)")
+                   f"of at most {cap or len(m.G)} terms)")
         note = (f"compact: {len(c.series.times)} of {len(m.G)} terms ({what}: {acc}); it {verdict}; "
                 f"{c.extrema} loss-modulus extrema over the data window")
         out = m.with_series(c.series, note)

@@ -4,8 +4,10 @@
 The shear relaxation modulus G(t) = E(t) / (2 (1 + nu)) and an elastic bulk modulus K (from
 ``--nu`` < 0.5 or ``--bulk-modulus``) are written in each code's own normalization, with the
 WLF or Arrhenius shift law (see :mod:`fitting.export`). The series is compact by default: the
-fewest terms (at most ``--max-terms``, default 20) whose medians on the DMA data named in the
-JSON stay within 1.5x of the full fit's (:mod:`fitting.compact`); ``--full-spectrum`` writes
+fewest terms whose medians on the DMA data named in the JSON stay within 1.5x of the full
+fit's and whose loss modulus has at most 3 local extrema over the data (:mod:`fitting.compact`;
+``--max-terms N`` caps the count, e.g. 20: accurate, but the loss ripples and the output says
+so); ``--full-spectrum`` writes
 every term. LS-DYNA gets the best 5 terms + G_inf (its six cards) over ``--window`` (reduced
 times at T_ref, s; default the data's), the refit's accuracy printed and in the file.
 ``--temperature K|C`` is required (it is in the file names too); ``--density`` (kg/m^3) is
@@ -112,8 +114,9 @@ def _parser():
     p.add_argument("--out-dir", default=None, help="output directory (default: the JSON's)")
     p.add_argument("--stem", default=None, help="file name stem (default: the JSON's)")
     p.add_argument("--max-terms", type=int, default=None,
-                   help="at most this many Prony terms (the compact series is refit to it; with --full-spectrum a "
-                        "material with more terms is refused)")
+                   help="at most this many Prony terms (default: as many as a smooth series holding the fit's accuracy "
+                        "needs; a smaller cap keeps the accuracy but the loss modulus ripples; with --full-spectrum "
+                        "a material with more terms is refused)")
     p.add_argument("--shift-law", choices=["WLF", "Arrhenius"], default=None,
                    help="export this closed-form alternative stored next to a table shift law")
     add_arguments(p)

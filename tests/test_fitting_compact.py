@@ -53,3 +53,59 @@ def test_choose_needs_data_or_the_recorded_errors():
         compact.choose(TRUE, WINDOW)
     with pytest.raises(ValueError, match="window"):
         compact.fit_terms(TRUE, 3, (1.0, 0.5))
+    with pytest.raises(ValueError, match="window"):
+        compact.placement(TRUE, (1.0, -2.0), 3)
+
+
+@pytest.mark.parametrize("h", [0.8, 1.0, 1.5])
+def test_ripple_is_that_of_a_sum_of_debye_peaks(h):
+    """compact.ripple against a Maxwell sum evaluated here: equal moduli h decades apart (a
+    flat spectrum, 121 terms), the loss modulus over one period in the middle: its relative
+    half peak-to-peak and its largest log-log slope. Known values: 5.5 % at 1 decade, 23 % at 1.5."""
+    tau = 10.0 ** (h * np.arange(-60, 61))
+    x = np.linspace(0.0, h, 801)                       # log10 omega over one period
+    z = 10.0 ** x[:, None] * tau
+    loss = (z / (1 + z * z)).sum(axis=1)
+    amp, slope = compact.ripple(h)
+    assert abs((loss.max() - loss.min()) / (loss.max() + loss.min()) / amp - 1) < 0.03
+    assert abs(np.abs(np.gradient(np.log10(loss), x)).max() / slope - 1) < 0.03
+    assert abs(compact.ripple(1.0)[0] - 0.055) < 0.001 and abs(compact.ripple(1.5)[0] - 0.23) < 0.005
+
+
+def test_placement_is_dense_where_the_loss_is_flat():
+    """A Gaussian spectrum (centre tau = 0.1 s, 1.5 decades wide) seen over 16 decades: its
+    loss modulus is flat at its peak (omega ~ 10 rad/s) and falls with slope near 1 far from
+    it, so the placed times are closer together at the peak than out there."""
+    tau = 10.0 ** np.arange(-9.0, 7.01, 1.0 / 3)
+    full = compact.Series(1e5, 1e8 * np.exp(-0.5 * ((np.log10(tau) + 1.0) / 1.5) ** 2), tau)
+    t = compact.placement(full, (1e-6, 1e10), 20)
+    assert len(t) == 20 and np.all(np.diff(t) > 0)
+    assert t.min() >= 10 ** -0.5 / 1e10 and t.max() <= 10 ** 0.5 / 1e-6
+    gap = lambda at: np.diff(np.log10(t))[np.argmin(np.abs(np.log10(t[1:]) - at))]  # noqa: E731
+    assert gap(-1.0) < 0.6 * gap(-8.0) and gap(-1.0) < 0.6 * gap(4.5)
+
+
+def test_choose_gives_a_smooth_series_where_few_free_terms_ripple():
+    """A nearly flat loss over 20 decades (a power-law spectrum, moduli ~ tau^-0.1, 3 times a
+    decade: log-log loss slope 0.1, no extrema) and noisy points of it: the default count is
+    smooth (at most 3 loss extrema, counted here) and accurate, with times inside the window;
+    a cap of 8 terms (2.5 decades apart: a 60 % ripple) cannot be smooth, and says so."""
+    tau = 10.0 ** np.arange(-11.0, 11.01, 1.0 / 3)
+    full = compact.Series(1e5, 1e6 * tau ** -0.1, tau)
+    rng = np.random.default_rng(5)
+    w = np.logspace(-9, 9, 180)
+    z = w[:, None] * tau
+    st = (full.E0 + (z * z / (1 + z * z)) @ full.moduli) * 10 ** rng.normal(0, 0.01, len(w))
+    lo = ((z / (1 + z * z)) @ full.moduli) * 10 ** rng.normal(0, 0.01, len(w))
+    window, ref = (w.min(), w.max()), errors_at(full, w, st, lo)
+    errors_of = lambda s: errors_at(s, w, st, lo)  # noqa: E731
+    c = compact.choose(full, window, errors_of=errors_of, target=(w, st, lo))
+    x = np.logspace(-9, 9, 5000)
+    zc = x[:, None] * c.series.times
+    loss = (zc / (1 + zc * zc)) @ c.series.moduli
+    turns = int(np.sum(np.diff(np.sign(np.diff(loss))) != 0))
+    assert c.met and turns <= 3 and len(c.series.times) < len(tau), (turns, len(c.series.times))
+    assert all(c.errors[k] <= 1.5 * ref[k] for k in ("storage_median", "loss_median"))
+    assert c.series.times.min() >= 10 ** -0.5 / w.max() and c.series.times.max() <= 10 ** 0.5 / w.min()
+    capped = compact.choose(full, window, errors_of=errors_of, target=(w, st, lo), max_terms=8)
+    assert not capped.met and len(capped.series.times) <= 8 and capped.extrema > 3
