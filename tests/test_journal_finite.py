@@ -398,7 +398,25 @@ def test_circumferential_groove_splits_the_land():
 
 
 # ---------------------------------------------------------------- mass-conserving cavitation
-def test_jfo_conserves_mass_and_meets_the_long_bearing():
+JFO = dict(cavitation="jfo", supply_angle=2.0)
+JFO_OPT = FiniteJournalOptions(n=32, m=32, spacing="cosine")
+JFO_WHIRL = [0.0, 30.0, 300.0]
+
+
+@pytest.fixture(scope="module")
+def jfo_long():
+    """The mass-conserving bearing with the groove fixed 2 rad from the load, at W = 1e5 N/m:
+    the long bearing (n = 32) and the finite one at L/D = 50 and 100 (32 x 32, cosine spacing),
+    each with its dynamic coefficients at JFO_WHIRL (rad/s)."""
+    W1 = 1e5
+    long = vjax.journal_coefficients(R, C, ETA, W1, JFO_WHIRL, omega_shaft=WJ, groove="fixed",
+                                     options=JournalOptions(n=32), **JFO)
+    finite_ = {LD: vjax.journal_coefficients(R, C, ETA, W1 * LD * D, JFO_WHIRL, omega_shaft=WJ, length=LD * D,
+                                             options=JFO_OPT, **JFO) for LD in (50.0, 100.0)}
+    return W1, long, finite_
+
+
+def test_jfo_conserves_mass_and_meets_the_long_bearing(jfo_long):
     """cavitation="jfo" (Elrod's universal unknown cell by cell, the Couette flux carrying the
     upwind liquid fraction): every land cell conserves mass, so the groove's net outflow is the
     flow out through the two end planes, here evaluated independently from the returned
@@ -406,16 +424,12 @@ def test_jfo_conserves_mass_and_meets_the_long_bearing():
     5e-12). With the groove fixed 2 rad from the load the film re-forms inside the land and the
     cavity fills partly (fraction < 1); L/D -> infinity (50 and 100 extrapolated) meets the long
     JFO bearing to 2e-3 in eps (measured 5.8e-4) and attitude (2.3e-4 rad), where Reynolds
-    conditions put the long bearing at eps 0.130 against JFO's 0.194. JFO's dynamic
-    coefficients are refused (not built)."""
-    W1 = 1e5
-    kw = dict(cavitation="jfo", supply_angle=2.0)
-    long = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed", options=JournalOptions(n=32), **kw)
+    conditions put the long bearing at eps 0.130 against JFO's 0.194."""
+    W1, long, finite_ = jfo_long
     long_reynolds = journal_bearing(R, C, ETA, W1, omega_shaft=WJ, groove="fixed", supply_angle=2.0,
                                     options=JournalOptions(n=32))
-    assert float(long.eccentricity) - float(long_reynolds.eccentricity) > 0.05
-    opt = FiniteJournalOptions(n=32, m=32, spacing="cosine")
-    sol = {LD: finite(W1 * LD * D, LD, options=opt, **kw) for LD in (50.0, 100.0)}
+    assert float(long.steady.eccentricity) - float(long_reynolds.eccentricity) > 0.05
+    sol = {LD: co.steady for LD, co in finite_.items()}
     s = sol[50.0]
     h, p, z = np.asarray(s.film), np.asarray(s.pressure), np.asarray(s.z)
     hz = 0.5 * (h[:, 1:] + h[:, :-1])
@@ -425,10 +439,50 @@ def test_jfo_conserves_mass_and_meets_the_long_bearing():
     assert float(np.min(np.asarray(s.film_fraction))) < 0.9
     eps = {LD: float(v.eccentricity) for LD, v in sol.items()}
     phi = {LD: float(v.attitude_angle) for LD, v in sol.items()}
-    assert abs((2 * eps[100.0] - eps[50.0]) / float(long.eccentricity) - 1) < 2e-3
-    assert abs(2 * phi[100.0] - phi[50.0] - float(long.attitude_angle)) < 2e-3
-    with pytest.raises(ValueError, match="jfo"):
-        vjax.journal_coefficients(R, C, ETA, W1 * D, 0.0, omega_shaft=WJ, length=D, options=OPT, **kw)
+    assert abs((2 * eps[100.0] - eps[50.0]) / float(long.steady.eccentricity) - 1) < 2e-3
+    assert abs(2 * phi[100.0] - phi[50.0] - float(long.steady.attitude_angle)) < 2e-3
+
+
+def test_jfo_coefficients_meet_the_long_bearing_and_the_static_stiffness(jfo_long):
+    """The cavity's liquid fraction has its own dynamics (h df/dt in each cavity cell's balance),
+    so K and C depend on the whirl frequency even for a rigid film. As L/D grows, K/L and C/L
+    at every whirl frequency tend to the long JFO bearing's (an independent 1D implementation)
+    at rate D/L: extrapolated from L/D = 50 and 100, within 5e-3 of the largest entry (measured
+    2.4e-3 for K at rest, 6e-4 at 30 and 300 rad/s; 1.6e-3 and 1e-4 for C); and, as in 1D, fast
+    whirl changes K (by ~10 % here). At rest K is the static stiffness:
+    central differences of the film force with the journal held at perturbed positions (Newton
+    on the cell equations, :func:`journal_finite.force_at`), 1e-3."""
+    W1, long, finite_ = jfo_long
+    K0, C0 = np.asarray(long.stiffness), np.asarray(long.damping)
+    per_length = lambda LD, a: np.asarray(a) / (LD * D)                 # noqa: E731
+    K = 2 * per_length(100.0, finite_[100.0].stiffness) - per_length(50.0, finite_[50.0].stiffness)
+    Cd = 2 * per_length(100.0, finite_[100.0].damping) - per_length(50.0, finite_[50.0].damping)
+    for w in range(len(JFO_WHIRL)):
+        assert np.max(np.abs(K[w] - K0[w])) < 5e-3 * np.abs(K0[w]).max(), (JFO_WHIRL[w], K[w], K0[w])
+        assert np.max(np.abs(Cd[w] - C0[w])) < 5e-3 * np.abs(C0[w]).max(), (JFO_WHIRL[w], Cd[w], C0[w])
+    K50 = np.asarray(finite_[50.0].stiffness)
+    assert np.max(np.abs(K50[2] - K50[0])) > 0.05 * np.abs(K50[0]).max()
+    # at rest: the static stiffness of the position-controlled film
+    co = finite_[50.0]
+    pr, cfg = journal_finite.setup(R, C, ETA, W1 * 50.0 * D, 50.0 * D, omega_shaft=WJ, options=JFO_OPT, **JFO)
+    frame = float(pr.frame)
+    rot = np.array([[np.cos(frame), -np.sin(frame)], [np.sin(frame), np.cos(frame)]])
+    s = co.steady
+    x0 = jnp.concatenate([(s.pressure[:, 1:-1] / pr.p_ref + s.film_fraction[:, 1:-1] - 1.0).ravel(),
+                          jnp.asarray(rot.T @ np.asarray(s.position) / C)])
+    Ks = np.zeros((2, 2))
+    for j in range(2):
+        motion = np.zeros(4)
+        motion[j] = 1e-4 * C
+        Fp, sp = journal_finite.force_at(x0, pr, cfg, jnp.asarray(motion))
+        Fm, sm = journal_finite.force_at(x0, pr, cfg, jnp.asarray(-motion))
+        assert bool(sp.converged) and bool(sm.converged)
+        Ks[:, j] = -(np.asarray(Fp) - np.asarray(Fm)) / (2e-4 * C)
+    Ks = rot @ Ks @ rot.T
+    assert np.max(np.abs(K50[0] - Ks)) < 1e-3 * np.abs(Ks).max(), (K50[0], Ks)
+    with pytest.raises(ValueError, match="rigid bodies only"):       # with bodies: not built
+        vjax.journal_coefficients(R, C, ETA, W1 * D, 0.0, omega_shaft=WJ, length=D, options=JFO_OPT,
+                                  housing=vjax.liner(vjax.Material.elastic(1e9, 0.4), 1e-3), **JFO)
 
 
 # ---------------------------------------------------------------- nested start

@@ -70,7 +70,8 @@ solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their c
 (:func:`_steady`); cold solves on grids of NESTED_MIN_CELLS cells or more start from the 2x
 coarser grid's solution. Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same
 linear solve). Dynamic coefficients: :func:`stiffness_damping` (rigid bodies),
-:func:`impedance` (deformable ones). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
+:func:`jfo_impedance` (rigid, "jfo": the cavity's fraction has its own dynamics, so K and C
+depend on the whirl frequency), :func:`impedance` (deformable ones; "jfo" with them is refused, not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
 failure, inside ``jit`` too.
 """
 from __future__ import annotations
@@ -274,13 +275,18 @@ def deformations(p_load, pr: Params, z):
     return deform(pr.op_B), deform(pr.op_J)
 
 
-def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None):
     """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes);
-    the arguments those of :func:`fields`."""
+    the arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
+    unknowns, with which a "jfo" cavity's liquid fraction changes (the dynamic coefficients)."""
     f = fields(x, pr, cfg, motion, relaxed, deformation)
     out = _film2d.net_outflow(f, pr.R, f["z"])
     dth = 2 * jnp.pi / cfg.n
-    out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * f["hdot"][:, 1:-1]
+    # the film's own growth d(h f)/dt per unit area, f the liquid fraction (1 but in a "jfo" cavity)
+    growth = f["hdot"][:, 1:-1] * f["fraction"][:, 1:-1]
+    if rate is not None and cfg.cavitation == "jfo":
+        growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, rate.reshape(f["pz"].shape), 0.0)
+    out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * growth
     scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
     r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
     if cfg.cavitation == "reynolds" and relaxed is not False:
@@ -766,6 +772,40 @@ def stiffness_damping(x0, pr: Params, cfg: Config):
 
 
 @partial(jax.jit, static_argnums=(2,))
+def jfo_impedance(x0, pr: Params, cfg: Config, whirl):
+    """Z(Omega) = K + i Omega C (complex (k, 2, 2), N/m; absolute axes) of the rigid finite film
+    with the mass-conserving ("jfo") cavity about the steady unknowns x0, at the whirl
+    frequencies ``whirl`` (k,) (rad/s). In a cavity the liquid fraction f has its own dynamics:
+    the cell's mass balance gains h df/dt besides f dh/dt, so the linearized system is
+
+        (A_p + i Omega A_pdot) dp = -(B_x + i Omega B_v) dx,   dF = G dp,   Z = -dF/dx
+
+    with A_pdot diagonal (R dtheta dz h in the cavity cells, 0 elsewhere): K and C depend on
+    Omega even for rigid bodies (the cavity carries its liquid to where the film re-forms with
+    a delay). One block-tridiagonal complex solve per frequency (:mod:`vjax._blocks`)."""
+    n, m = cfg.n, cfg.m
+    N = _unknowns(cfg)
+    pz0, still, no_rate = x0[:N], jnp.zeros(4, x0.dtype), jnp.zeros(N, x0.dtype)
+    cells = lambda pz, motion, rate: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion,  # noqa: E731
+                                                   rate=rate)[0]
+    lower, diag, upper = _blocks.neighbourhood_blocks(lambda pz: cells(pz, still, no_rate), pz0, n, m - 1)
+    # d cells / d rate is diagonal (a cell's own fraction): one forward derivative gives it
+    A_pdot = jax.jvp(lambda r: cells(pz0, still, r), (no_rate,), (jnp.ones_like(no_rate),))[1].reshape(n, m - 1)
+    B = jax.jacfwd(lambda motion: cells(pz0, motion, no_rate))(still)                       # (N, 4)
+    G = jax.jacrev(lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1])(pz0)  # (2, N)
+    empty = jnp.zeros((N, 0), complex)
+
+    def one(W):
+        shifted = diag + 1j * W * jax.vmap(jnp.diag)(A_pdot)
+        solve = _blocks.bordered_solver((lower.astype(complex), shifted, upper.astype(complex)), empty, empty.T,
+                                        jnp.zeros((0, 0), complex))[0]
+        return G @ jax.vmap(solve, in_axes=1, out_axes=1)(B[:, :2] + 1j * W * B[:, 2:])    # -dF/dx
+
+    rot = _rotation(pr.frame)
+    return jnp.einsum("ij,wjk,lk->wil", rot, jax.vmap(one)(whirl), rot)
+
+
+@partial(jax.jit, static_argnums=(2,))
 def tilt_stiffness_damping(x0, pr: Params, cfg: Config):
     """4 x 4 stiffness and damping of the rigid finite film about the steady unknowns x0, in the
     journal's position and tilt q = (X, Y, gamma_x, gamma_y) for its force and moment
@@ -824,26 +864,28 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
 
         (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
 
-    (S the loading pressure's slope: the half-Sommerfeld clip), Z = -dF/dx; a dense complex
-    solve per whirl frequency (n (m - 1) unknowns)."""
+    (S the loading pressure's slope: the half-Sommerfeld clip; A_p + i Omega A_pdot with a "jfo"
+    cavity, :func:`jfo_impedance`), Z = -dF/dx; a dense complex solve per whirl frequency
+    (n (m - 1) unknowns)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     pz0 = x0[:N]
     f0 = fields(x0, pr, cfg)
     U0, zero, motion0 = f0["uB"] + f0["uJ"], jnp.zeros((n, m + 1), x0.dtype), jnp.zeros(4, x0.dtype)
 
-    def eqs(pz, U, Udot, motion):
-        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot))
+    def eqs(pz, U, Udot, motion, rate):
+        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot), rate=rate)
 
-    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(pz0, U0, zero, motion0)
-    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0)[1])(pz0)                     # (2, N)
+    J_p, J_U, J_Ud, J_s, J_pd = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3, 4))(
+        pz0, U0, zero, motion0, jnp.zeros_like(pz0))
+    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0, None)[1])(pz0)               # (2, N)
     slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
 
     def one(W):
         M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in bodies
                 if body is not None)
         GU = (J_U + 1j * W * J_Ud)[:, :, 1:-1]      # the end nodes hold ambient pressure: no response
-        A = J_p + (jnp.einsum("rkj,ki->rij", GU, M) * slope[None]).reshape(N, N)
+        A = J_p + 1j * W * J_pd + (jnp.einsum("rkj,ki->rij", GU, M) * slope[None]).reshape(N, N)
         b = J_s[:, :2] + 1j * W * J_s[:, 2:]
         return -G @ jnp.linalg.solve(A, -b)
 
@@ -859,15 +901,18 @@ def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies=()
     film (whose result holds the clipped pressure) by one more solve. Rigid bodies:
     :func:`stiffness_damping` (independent of the whirl); deformable ones (``bodies`` as in
     :func:`impedance`): :func:`impedance`, C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
-    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr)
+    # "jfo": the universal unknown, the film fraction - 1 in the cavity
+    x0 = _as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
     whirl = jnp.zeros(1, x0.dtype) if whirl is None else whirl
-    if _rigid(pr):
+    if _rigid(pr) and cfg.cavitation != "jfo":
         K, C = stiffness_damping(x0, pr, cfg)
         K, C = (jnp.broadcast_to(a, whirl.shape + (2, 2)) for a in (K, C))
         return K + 1j * whirl[:, None, None] * C, K, C
-    Z, dZ = jax.jvp(lambda w: impedance(x0, pr, cfg, bodies, w), (whirl,), (jnp.ones_like(whirl),))
+    response = (lambda w: jfo_impedance(x0, pr, cfg, w)) if _rigid(pr) else (  # noqa: E731
+        lambda w: impedance(x0, pr, cfg, bodies, w))
+    Z, dZ = jax.jvp(response, (whirl,), (jnp.ones_like(whirl),))
     at_rest = (whirl == 0)[:, None, None]
     C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
     return Z, Z.real, C
@@ -878,9 +923,9 @@ def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, 
     absolute axes) at the whirl frequencies ``whirl`` (k,) for
     ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
     :func:`finite_journal_bearing` (rigid bodies: K, C independent of the whirl)."""
-    if kw.get("cavitation") == "jfo":
+    if kw.get("cavitation") == "jfo" and (kw.get("housing") is not None or kw.get("shaft") is not None):
         raise ValueError("cavitation='jfo': the dynamic coefficients of a finite bearing with the mass-conserving "
-                         "cavity are not built yet (its film fraction has its own dynamics); use 'reynolds'")
+                         "cavity are built for rigid bodies only (housing=None, shaft=None); use 'reynolds'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
     housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),
