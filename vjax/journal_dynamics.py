@@ -67,7 +67,7 @@ from . import _journal_film as film
 from .journal import JournalOptions, JournalResult, journal_bearing
 from .operator import circulant, grid
 
-__all__ = ["JournalCoefficients", "journal_coefficients", "stability_threshold"]
+__all__ = ["JournalCoefficients", "journal_coefficients", "lund", "stability_threshold"]
 
 
 @jax.tree_util.register_dataclass
@@ -331,6 +331,17 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
                                speed=jnp.asarray(omega_shaft, whirl.dtype), steady=sol)
 
 
+def lund(K, C):
+    """Lund's threshold (K_eq, W^2) (N/m, rad^2/s^2) of stiffness and damping arrays K, C
+    (..., 2, 2) (N/m, N s/m): the equations of :func:`stability_threshold`, in plain array
+    arithmetic, so that they trace under jit and differentiate (a design's whirl constraint)."""
+    Keq = (K[..., 0, 0] * C[..., 1, 1] + K[..., 1, 1] * C[..., 0, 0] - K[..., 0, 1] * C[..., 1, 0]
+           - K[..., 1, 0] * C[..., 0, 1]) / (C[..., 0, 0] + C[..., 1, 1])
+    W2 = ((K[..., 0, 0] - Keq) * (K[..., 1, 1] - Keq) - K[..., 0, 1] * K[..., 1, 0]) \
+        / (C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0])
+    return Keq, W2
+
+
 def stability_threshold(coefficients: JournalCoefficients, length=1.0) -> dict:
     """Onset of oil whirl of a symmetric rigid rotor on two identical bearings (cylindrical
     mode; Lund's classical analysis): per bearing a mass M on the coefficients K, C,
@@ -358,13 +369,6 @@ def stability_threshold(coefficients: JournalCoefficients, length=1.0) -> dict:
     W = np.asarray(coefficients.whirl)
     speed = float(coefficients.speed)
     none = dict(whirl=None, whirl_ratio=None, critical_mass=None, stiffness=None)
-
-    def lund(K, C):       # (K_eq, W^2) of coefficient arrays (..., 2, 2)
-        Keq = (K[..., 0, 0] * C[..., 1, 1] + K[..., 1, 1] * C[..., 0, 0] - K[..., 0, 1] * C[..., 1, 0]
-               - K[..., 1, 0] * C[..., 0, 1]) / (C[..., 0, 0] + C[..., 1, 1])
-        W2 = ((K[..., 0, 0] - Keq) * (K[..., 1, 1] - Keq) - K[..., 0, 1] * K[..., 1, 0]) \
-            / (C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0])
-        return Keq, W2
 
     if W.size == 1:
         keq, w2 = lund(K[0], C[0])
