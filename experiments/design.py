@@ -14,6 +14,18 @@ point (and, for scale, with four times as many).
 Each solve starts from the nearest converged solution (``initial=``); a point whose solve
 fails counts as a call and as infeasible.
 
+**Finite polymer-lined journal bearing** (``--only finite``). R = 50 mm, load 2 kN (the
+weight of a 204 kg rotor share), journal at 1000 rad/s, oil 0.01 Pa s, a liner of an SLS
+polymer (0.3 / 3 GPa, 1 ms, nu 0.4) bonded in a rigid housing, groove fixed opposite the
+load; 48 x 12 grid (32 x 8 quick). Design variables: L/D in [0.25, 1], radial clearance in
+[50, 150] um, liner thickness in [0.5, 3] mm (on their logarithms). Objective: power loss
+(W). Constraints: minimum film >= 25 um; oil-whirl margin: the critical mass of Lund's
+threshold (:func:`vjax.journal_dynamics.lund`, K and C of the lined bearing at the
+half-frequency whirl) at least 1.5 times the rotor mass per bearing. Gradient method: SLSQP
+from three starts across the box (the feasible set is not convex), the exact 3-column
+Jacobian by forward mode through the implicit derivatives of the steady solve and the
+linearization; baseline: random search with the same number of calls (and four times as many).
+
 **Needle roller bearing.** Rings of a calibrated polymer on both sides (enumerated:
 the pyvisco and the dmasuite DMA data sets, Prony + WLF fitted at 10-100 C), D = 2 mm
 rigid rollers, radial load 2e4 N/m, outer ring fixed. Design variables: diametral
@@ -30,7 +42,7 @@ of :func:`vjax.roller_bearing`. Baseline: random search over all four variables 
 and Z uniformly) with the same number of solver calls. A solver call is one design
 evaluation (four bearing solves); an evaluation where a solve fails is infeasible.
 
-Run: ``python -m experiments.design [--quick] [--only journal|roller]``.
+Run: ``python -m experiments.design [--quick] [--only journal|finite|roller]``.
 """
 from __future__ import annotations
 
