@@ -1,0 +1,258 @@
+"""Modal compliance of a bonded cylindrical layer in 3D elasticity (issue 27, item 3(b)).
+
+A layer a <= r <= b of a linear elastic material (Young modulus E, Poisson ratio nu) is bonded
+(u_r = u_theta = u_z = 0) on its far surface and loaded on the other by the normal pressure
+
+    p(theta, z) = P cos(n theta) cos(k z)        (Pa, pushing into the body; no shear)
+
+- ``"liner"``: loaded on its bore r = a = R, bonded at b = R + t (a bushing in a housing);
+- ``"sleeve"``: loaded on its outer surface r = b = R, bonded at a = R - t (a sleeved shaft).
+
+The radial displacement of the loaded surface, positive into the body, is
+
+    u(theta, z) = c(n, k R, nu, t / R) (R / E) P cos(n theta) cos(k z),
+
+c dimensionless, exactly the units and sign of the plane-strain layer compliance
+:func:`vjax.green.mode_compliance` (``"liner"``, ``"sleeve"``), which is its k -> 0 limit. With
+a constant Poisson ratio the viscoelastic layer is c / E*(omega) at each circumferential
+mode's own frequency, as in 2D (correspondence principle).
+
+Axial end condition
+-------------------
+The fields below have u_r, u_theta ~ cos(k z) and u_z, sigma_rz, sigma_thetaz ~ sin(k z): on the
+planes z = 0 and z = L with k = j pi / L they satisfy u_z = 0 and zero shear. So each mode is
+exact for a layer of length L whose ends slide on rigid, frictionless shoulders, and the
+cosine series of the land's pressure, k_j = j pi / L, gives that layer's displacement
+exactly (a land longer than the layer, or a layer overhanging the land, is not this case).
+
+Solution
+--------
+Dimensionless: R = 1, E = 1, mu = 1 / (2 (1 + nu)). Every field is the sum of six
+displacement solutions built from harmonic functions (Papkovich-Neuber form
+2 mu u = 4 (1 - nu) B - grad(x . B + B_0) with harmonic B, B_0), with
+H = Z_n(k r) cos(n theta) cos(k z), Z = I (growing) or K (decaying):
+
+    (1) u = grad H                                            (B = 0, B_0 = -H)
+    (2) u = -4 (1 - nu) dH/dz e_z - grad(r dH/dr)             (B = -dH/dz e_z; x.B + B_0 = r dH/dr)
+    (3) u = 4 (1 - nu) B - grad(r B_r),  B = Z_(n+-1)(k r) cos(k z) (cos n theta e_r +- sin n theta e_theta)
+
+(3) takes n + 1 with I and n - 1 with K (B_x +- i B_y = Z_(n+-1) e^(+-i (n+-1) theta) cos kz is
+harmonic). This choice, rather than (1) and two Papkovich vectors of equal order, keeps the six
+columns distinct as k -> 0: (1) and (2) tend to Michell's r^(n-1) (I) or r^(-n-1) (K) field
+and, through u_z / k, to the antiplane r^(+-n); (3) to Michell's r^(n+1) (I) or r^(1-n) (K).
+With amplitudes u_r = U(r) cos n theta cos kz, u_theta = V(r) sin n theta cos kz,
+u_z = k w(r) cos n theta sin kz (so w stays finite as k -> 0), f = Z_n(k r) for (1), (2) and
+g = Z_(n+-1)(k r) for (3) (f', f'' by r; f'' = -f'/r + (k^2 + n^2/r^2) f, Bessel's equation):
+
+    (1) U = f',              V = -n f / r,        w = -f,                     div B = 0
+    (2) U = -(f' + r f''),   V = n f',            w = 4 (1 - nu) f + r f',    div B = k^2 f
+    (3) U = (3 - 4 nu) g - r g',  V = (n +- 4 (1 - nu)) g,  w = r g,          div B = g' + (1 +- n) g / r
+
+and the tractions on a surface r = const (lambda div u = 4 mu nu div B for the Papkovich
+solutions: finite for an incompressible layer)
+
+    sigma_rr = 4 mu nu div B + 2 mu U',   sigma_r theta = mu (V' - (V + n U) / r),
+    sigma_rz / k = mu (w' - U).
+
+Boundary conditions, six per mode: sigma_rr = -P, sigma_r theta = 0, sigma_rz / k = 0 on the
+loaded surface; U = V = w = 0 on the bonded one. One 6 x 6 solve per (n, k) (rows
+equilibrated, Gaussian elimination with partial pivoting). n = 0 has no theta fields: the
+theta rows then pin solution (2)'s coefficients to zero (the axisymmetric pair is (1), (3)).
+k = 0 exactly is the plane-strain layer (:func:`vjax.green.mode_compliance`), the limit.
+
+Bessel functions without overflow: each column is scaled by its function's value on the
+surface where it is largest (I on the outer radius, K on the inner one), so the ratios
+Z_m(k r) / Z_m(k r_ref) <= 1 and the logarithmic derivatives are all that is needed.
+I: ratios I_(m+1)/I_m by backward recurrence (Miller; the minimal solution of the
+recurrence I_(m-1) - I_(m+1) = (2 m / x) I_m) from order max(n) + 2 + ``_MILLER_DEPTH``,
+log I_0 from jax's i0e; K: K_0 e^x, K_1 e^x by the trapezoidal rule on
+K_nu(x) e^x = int_0^inf exp(-2 x sinh^2(t/2)) cosh(nu t) dt (exponentially convergent), then
+forward recurrence of K_(m-1)/K_m (stable: K is dominant). Valid for x = k r from 1e-6 to
+2.5e3 and orders up to a few thousand (checked against scipy's ive, kve).
+"""
+from __future__ import annotations
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from .green import LAYERS, _michell_modes, _solve_small
+
+X_MAX = 2.5e3          # largest k r for which the I ratios' backward recurrence has converged
+_MILLER_DEPTH = int(np.ceil(np.sqrt(45.0 * X_MAX))) + 16   # extra orders: errors damp ~ exp(-D^2 / x)
+_K_NODES = 128         # trapezoidal nodes of the K_0, K_1 integrals
+
+
+# ------------------------------------------------------------------------------ Bessel helpers
+def k01e(x):
+    """(K_0(x) e^x, K_1(x) e^x) for x > 0: trapezoidal rule on the even, entire integrand of
+    K_nu(x) e^x = int_0^inf exp(-2 x sinh^2(t/2)) cosh(nu t) dt. Step h = min(0.2, 0.7/sqrt(x)):
+    the error ~ exp(-2 pi d / h) with d ~ 1.4 (small x) and ~ exp(-2 pi^2 / (x h^2)) (large x,
+    a Gaussian of width 1/sqrt(x)), both below 1e-16; 128 nodes reach past the integrand's
+    decay from x = 1e-6 on."""
+    x = jnp.asarray(x)
+    h = jnp.minimum(0.2, 0.7 / jnp.sqrt(x))
+    t = h[..., None] * jnp.arange(_K_NODES, dtype=x.dtype)
+    e = jnp.exp(-2.0 * x[..., None] * jnp.sinh(0.5 * t) ** 2)
+    w = jnp.ones(_K_NODES, x.dtype).at[0].set(0.5)
+    return h * jnp.sum(w * e, -1), h * jnp.sum(w * e * jnp.cosh(t), -1)
+
+
+def i_table(x, m_max: int):
+    """log I_m(x) and r_m = I_(m+1)(x) / I_m(x) for m = 0 .. m_max (two arrays (m_max + 1, *x.shape)),
+    x > 0. r by backward recurrence r_(m-1) = 1 / (2 m / x + r_m) from order m_max + _MILLER_DEPTH
+    (started from the uniform estimate x / (m + 1/2 + sqrt((m + 1/2)^2 + x^2))); log I_m by
+    log I_0 = log i0e(x) + x and cumulative sums of log r."""
+    x = jnp.asarray(x)
+    top = m_max + _MILLER_DEPTH
+    start = x / (top + 0.5 + jnp.sqrt((top + 0.5) ** 2 + x * x))
+
+    def step(r, m):                                   # r = r_m -> r_(m-1)
+        prev = 1.0 / (2.0 * m / x + r)
+        return prev, prev
+    orders = jnp.arange(top, 0, -1, dtype=x.dtype)   # m = top .. 1 gives r_(top-1) .. r_0
+    _, rs = jax.lax.scan(step, start, orders)
+    r = rs[::-1][: m_max + 1]                         # r_0 .. r_m_max
+    log0 = jnp.log(jax.scipy.special.i0e(x)) + x
+    logI = log0 + jnp.concatenate([jnp.zeros_like(x)[None], jnp.cumsum(jnp.log(r[:-1]), 0)], 0)
+    return logI, r
+
+
+def k_table(x, m_max: int):
+    """log K_m(x) and q_m = K_(m-1)(x) / K_m(x) for m = 0 .. m_max (q_0 = K_1 / K_0, as
+    K_(-1) = K_1), x > 0: K_0, K_1 from :func:`k01e`, then the forward recurrence
+    q_(m+1) = 1 / (q_m + 2 m / x) (K dominant: stable) and log K_(m+1) = log K_m - log q_(m+1)."""
+    x = jnp.asarray(x)
+    k0, k1 = k01e(x)
+    q1 = k0 / k1
+
+    def step(q, m):                                   # q = q_m -> q_(m+1)
+        nxt = 1.0 / (q + 2.0 * m / x)
+        return nxt, nxt
+    if m_max >= 2:
+        _, qs = jax.lax.scan(step, q1, jnp.arange(1, m_max, dtype=x.dtype))
+        q = jnp.concatenate([(1.0 / q1)[None], q1[None], qs], 0)
+    else:
+        q = jnp.stack([1.0 / q1, q1], 0)[: m_max + 1]
+    logK1 = jnp.log(k1) - x
+    tail = logK1 - jnp.cumsum(jnp.log(q[2:]), 0) if m_max >= 2 else jnp.zeros((0,) + x.shape, x.dtype)
+    logK = jnp.concatenate([(jnp.log(k0) - x)[None], logK1[None], tail], 0)[: m_max + 1]
+    return logK, q
+
+
+# ------------------------------------------------------------------------------ the six fields
+def _fields(family, n, k, r, nu, f, f1, order):
+    """Rows [U, V, w, sigma_rr, sigma_r theta, sigma_rz / k] (E = 1) at radius r of solution
+    ``family`` (1, 2, 3 of the module docstring; 3 with order n + 1 (I) or n - 1 (K), sign
+    s = +1 / -1) from its radial function f = Z_order(k r) and f' = df/dr."""
+    mu = 0.5 / (1.0 + nu)
+    f2 = -f1 / r + (k * k + order * order / (r * r)) * f
+    if family == 1:
+        U, dU = f1, f2
+        V, dV = -n * f / r, -n * (f1 / r - f / (r * r))
+        w, dw = -f, -f1
+        divB = jnp.zeros_like(f)
+    elif family == 2:
+        f3 = -f2 / r + f1 / (r * r) + (k * k + order * order / (r * r)) * f1 - 2.0 * order * order * f / r**3
+        U, dU = -(f1 + r * f2), -(2.0 * f2 + r * f3)
+        V, dV = n * f1, n * f2
+        w, dw = 4.0 * (1.0 - nu) * f + r * f1, (5.0 - 4.0 * nu) * f1 + r * f2
+        divB = k * k * f
+    else:
+        s = jnp.where(order > n, 1.0, -1.0)
+        U, dU = (3.0 - 4.0 * nu) * f - r * f1, (2.0 - 4.0 * nu) * f1 - r * f2
+        V, dV = (n + s * 4.0 * (1.0 - nu)) * f, (n + s * 4.0 * (1.0 - nu)) * f1
+        w, dw = r * f, f + r * f1
+        divB = f1 + (1.0 + s * n) * f / r
+    srr = 4.0 * mu * nu * divB + 2.0 * mu * dU
+    srt = mu * (dV - (V + n * U) / r)
+    srz = mu * (dw - U)
+    return jnp.stack([U, V, w, srr, srt, srz], -1)
+
+
+def layer_modes(kind: str, n, kR, nu, thickness_ratio):
+    """Dimensionless 3D compliance c(n, k R) of a bonded layer (module docstring), shape
+    ``n.shape + kR.shape``.
+
+    ``kind``: "liner" (loaded on its bore, bonded outside) or "sleeve" (loaded outside, bonded
+    on a core); ``n``: circumferential orders (integers, concrete: the Bessel tables' length is
+    static); ``kR``: axial wavenumber times the loaded radius R (>= 0; k = j pi / L for a layer
+    between sliding shoulders); ``nu``: Poisson ratio (<= 0.5, 0.5 allowed);
+    ``thickness_ratio``: t / R (a sleeve's below 1). u = c (R / E) P into the body; k = 0 gives
+    :func:`vjax.green.mode_compliance`'s plane-strain value. Differentiable in kR, nu and t/R."""
+    if kind not in LAYERS:
+        raise ValueError(f"kind must be one of {', '.join(LAYERS)}, got {kind!r}")
+    n_int = np.abs(np.asarray(n, dtype=np.int64))
+    n_max = int(n_int.max()) if n_int.size else 0
+    kR = jnp.asarray(kR, dtype=jnp.result_type(kR, nu, thickness_ratio, float))
+    dtype = kR.dtype
+    tau = jnp.asarray(thickness_ratio, dtype)
+    nu = jnp.asarray(nu, dtype)
+    lo, hi = (jnp.ones((), dtype), 1.0 + tau) if kind == "liner" else (1.0 - tau, jnp.ones((), dtype))
+    zero_k = kR == 0
+    k = jnp.where(zero_k, 1.0, kR)                  # k = 0 exactly: the plane-strain limit below
+    radii = jnp.stack([lo, hi])                         # (2,)
+    x = k[..., None] * radii                            # (*kR.shape, 2)
+    logI, rI = i_table(x, n_max + 2)
+    logK, qK = k_table(x, n_max + 1)
+
+    # table lookups: orders m (..., n-shape) at radius index; broadcast to n.shape + kR.shape
+    nn = n_int.reshape(n_int.shape + (1,) * kR.ndim)
+    nf = jnp.asarray(nn, dtype)
+    kk = k[(None,) * n_int.ndim]
+    kdim = n_int.ndim
+
+    def at(table, m, i):
+        t = jnp.moveaxis(table[..., i], 0, -1)        # (*kR.shape, M)
+        idx = jnp.broadcast_to(jnp.asarray(m), m.shape[:kdim] + kR.shape)
+        tb = jnp.broadcast_to(t, (1,) * kdim + t.shape)
+        return jnp.take_along_axis(tb, idx[..., None], -1)[..., 0]
+
+    rad = {0: lo, 1: hi}
+
+    def logZ_I(m, i):
+        return at(logI, m, i)
+
+    def dlog_I(m, i):                                   # I_m'(x)/I_m(x) k = k (r_m + m / x)
+        return kk * (at(rI, m, i) + m.astype(dtype) / (kk * rad[i]))
+
+    def logZ_K(m, i):
+        return at(logK, m, i)
+
+    def dlog_K(m, i):                                   # K_m'(x)/K_m(x) k = -k (q_m + m / x)
+        return -kk * (at(qK, m, i) + m.astype(dtype) / (kk * rad[i]))
+
+    nb = np.broadcast_to(nn, n_int.shape + kR.shape)
+    I_orders = (nb, nb, nb + 1)
+    K_orders = (nb, nb, np.abs(nb - 1))
+
+    def block(i):
+        r = rad[i]
+        cI = _columns_at(nf, kk, r, nu, logZ_I, dlog_I, I_orders, i, 1)
+        cK = _columns_at(nf, kk, r, nu, logZ_K, dlog_K, K_orders, i, 0)
+        return jnp.concatenate([cI, cK], -1)                       # (..., 6, 6)
+
+    loaded_i, bonded_i = (0, 1) if kind == "liner" else (1, 0)
+    loaded, bonded = block(loaded_i), block(bonded_i)
+    A = jnp.concatenate([loaded[..., 3:, :], bonded[..., :3, :]], -2)
+    # n = 0: no theta fields; pin solution (2)'s two coefficients instead
+    axisym = jnp.asarray(nb == 0)[..., None]
+    A = A.at[..., 1, :].set(jnp.where(axisym, jnp.eye(6, dtype=dtype)[1], A[..., 1, :]))
+    A = A.at[..., 4, :].set(jnp.where(axisym, jnp.eye(6, dtype=dtype)[4], A[..., 4, :]))
+    rhs = jnp.broadcast_to(jnp.array([-1.0, 0, 0, 0, 0, 0], dtype), A.shape[:-1])
+    scale = jnp.max(jnp.abs(A), -1)                                 # row equilibration
+    coef = _solve_small(A / scale[..., None], rhs / scale)
+    u = jnp.sum(loaded[..., 0, :] * coef, -1)
+    c3 = u if kind == "liner" else -u
+    c2 = _michell_modes(kind, jnp.asarray(nb, dtype), nu, tau)
+    return jnp.where(jnp.broadcast_to(zero_k, c3.shape), c2, c3)
+
+
+def _columns_at(nf, k, r, nu, logZ, dlogZ, orders, i, ref_i):
+    """Three columns (..., 6, 3) at radius index ``i``, each function scaled by its value at
+    radius index ``ref_i`` (I: the outer surface, K: the inner one)."""
+    cols = []
+    for family, m in zip((1, 2, 3), orders):
+        f = jnp.exp(logZ(m, i) - logZ(m, ref_i))
+        cols.append(_fields(family, nf, k, r, nu, f, f * dlogZ(m, i), jnp.asarray(m, f.dtype)))
+    return jnp.stack(cols, -1)
