@@ -72,6 +72,8 @@ forward recurrence of K_(m-1)/K_m (stable: K is dominant). Valid for x = k r fro
 """
 from __future__ import annotations
 
+from functools import partial
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -170,89 +172,81 @@ def _fields(family, n, k, r, nu, f, f1, order):
     return jnp.stack([U, V, w, srr, srt, srz], -1)
 
 
-def layer_modes(kind: str, n, kR, nu, thickness_ratio):
+def layer_modes(kind: str, n, kR, nu, thickness_ratio, n_max: int | None = None):
     """Dimensionless 3D compliance c(n, k R) of a bonded layer (module docstring), shape
     ``n.shape + kR.shape``.
 
     ``kind``: "liner" (loaded on its bore, bonded outside) or "sleeve" (loaded outside, bonded
-    on a core); ``n``: circumferential orders (integers, concrete: the Bessel tables' length is
-    static); ``kR``: axial wavenumber times the loaded radius R (>= 0; k = j pi / L for a layer
-    between sliding shoulders); ``nu``: Poisson ratio (<= 0.5, 0.5 allowed);
-    ``thickness_ratio``: t / R (a sleeve's below 1). u = c (R / E) P into the body; k = 0 gives
-    :func:`vjax.green.mode_compliance`'s plane-strain value. Differentiable in kR, nu and t/R."""
+    on a core); ``n``: circumferential orders (integers); ``kR``: axial wavenumber times the
+    loaded radius R (>= 0; k = j pi / L for a layer between sliding shoulders); ``nu``: Poisson
+    ratio (<= 0.5, 0.5 allowed); ``thickness_ratio``: t / R (a sleeve's below 1). u = c (R / E) P
+    into the body; k = 0 gives :func:`vjax.green.mode_compliance`'s plane-strain value.
+    Differentiable in kR, nu and t/R. ``n_max``: a static bound on the orders (needed when
+    ``n`` is traced; else max(n) rounded up to a power of two, so that calls share compiles)."""
     if kind not in LAYERS:
         raise ValueError(f"kind must be one of {', '.join(LAYERS)}, got {kind!r}")
-    n_int = np.abs(np.asarray(n, dtype=np.int64))
-    n_max = int(n_int.max()) if n_int.size else 0
-    kR = jnp.asarray(kR, dtype=jnp.result_type(kR, nu, thickness_ratio, float))
+    if n_max is None:
+        top = int(np.max(np.abs(np.asarray(n)))) if np.size(n) else 0
+        n_max = max(16, 1 << int(np.ceil(np.log2(top + 1))))
+    dtype = jnp.result_type(kR, nu, thickness_ratio)
+    dtype = dtype if jnp.issubdtype(dtype, jnp.floating) else jnp.result_type(float)
+    n = jnp.asarray(n)
+    out_shape = n.shape + jnp.shape(kR)
+    c = _layer_core(int(n_max), jnp.abs(n).reshape(-1).astype(jnp.int32), jnp.asarray(kR, dtype).reshape(-1),
+                    jnp.asarray(nu, dtype), jnp.asarray(thickness_ratio, dtype), kind == "liner")
+    return c.reshape(out_shape)
+
+
+@partial(jax.jit, static_argnums=(0,))
+def _layer_core(n_max, m, kR, nu, tau, liner):
+    """c (N, P) for orders m (N,) <= n_max and kR (P,); ``liner`` a (traced) bool: liner and
+    sleeve share one compiled program."""
     dtype = kR.dtype
-    tau = jnp.asarray(thickness_ratio, dtype)
-    nu = jnp.asarray(nu, dtype)
-    lo, hi = (jnp.ones((), dtype), 1.0 + tau) if kind == "liner" else (1.0 - tau, jnp.ones((), dtype))
+    one = jnp.ones((), dtype)
+    liner = jnp.asarray(liner)
+    radii = (jnp.where(liner, one, one - tau), jnp.where(liner, one + tau, one))    # inner, outer
     zero_k = kR == 0
-    k = jnp.where(zero_k, 1.0, kR)                  # k = 0 exactly: the plane-strain limit below
-    radii = jnp.stack([lo, hi])                         # (2,)
-    x = k[..., None] * radii                            # (*kR.shape, 2)
-    logI, rI = i_table(x, n_max + 2)
+    k = jnp.where(zero_k, 1.0, kR)                      # k = 0 exactly: the plane-strain limit below
+    x = k[:, None] * jnp.stack(radii)                   # (P, 2)
+    logI, rI = i_table(x, n_max + 2)                    # (n_max + 3, P, 2)
     logK, qK = k_table(x, n_max + 1)
+    nf = m.astype(dtype)[:, None]                       # (N, 1)
+    kk = k[None, :]                                     # (1, P)
 
-    # table lookups: orders m (..., n-shape) at radius index; broadcast to n.shape + kR.shape
-    nn = n_int.reshape(n_int.shape + (1,) * kR.ndim)
-    nf = jnp.asarray(nn, dtype)
-    kk = k[(None,) * n_int.ndim]
-    kdim = n_int.ndim
+    # (log Z_o(k r_i), k Z_o'/Z_o) at radius index i for the orders o (N,), (N, P) each;
+    # Z' = dZ/dx: I_o'/I_o = r_o + o/x, K_o'/K_o = -(q_o + o/x)
+    def I_at(o, i):
+        return logI[o, :, i], kk * rI[o, :, i] + o.astype(dtype)[:, None] / radii[i]
 
-    def at(table, m, i):
-        t = jnp.moveaxis(table[..., i], 0, -1)        # (*kR.shape, M)
-        idx = jnp.broadcast_to(jnp.asarray(m), m.shape[:kdim] + kR.shape)
-        tb = jnp.broadcast_to(t, (1,) * kdim + t.shape)
-        return jnp.take_along_axis(tb, idx[..., None], -1)[..., 0]
+    def K_at(o, i):
+        return logK[o, :, i], -kk * qK[o, :, i] - o.astype(dtype)[:, None] / radii[i]
 
-    rad = {0: lo, 1: hi}
-
-    def logZ_I(m, i):
-        return at(logI, m, i)
-
-    def dlog_I(m, i):                                   # I_m'(x)/I_m(x) k = k (r_m + m / x)
-        return kk * (at(rI, m, i) + m.astype(dtype) / (kk * rad[i]))
-
-    def logZ_K(m, i):
-        return at(logK, m, i)
-
-    def dlog_K(m, i):                                   # K_m'(x)/K_m(x) k = -k (q_m + m / x)
-        return -kk * (at(qK, m, i) + m.astype(dtype) / (kk * rad[i]))
-
-    nb = np.broadcast_to(nn, n_int.shape + kR.shape)
-    I_orders = (nb, nb, nb + 1)
-    K_orders = (nb, nb, np.abs(nb - 1))
+    I_orders, K_orders = (m, m, m + 1), (m, m, jnp.abs(m - 1))
 
     def block(i):
-        r = rad[i]
-        cI = _columns_at(nf, kk, r, nu, logZ_I, dlog_I, I_orders, i, 1)
-        cK = _columns_at(nf, kk, r, nu, logZ_K, dlog_K, K_orders, i, 0)
-        return jnp.concatenate([cI, cK], -1)                       # (..., 6, 6)
+        """The six solutions' field rows at radius index i, (N, P, 6, 6); the I functions scaled
+        by their value on the outer surface (index 1), the K ones on the inner one (index 0)."""
+        cols = []
+        for at, orders, ref in ((I_at, I_orders, 1), (K_at, K_orders, 0)):
+            for family, o in zip((1, 2, 3), orders):
+                logz, dlog = at(o, i)
+                f = jnp.exp(logz - at(o, ref)[0])
+                cols.append(_fields(family, nf, kk, radii[i], nu, f, f * dlog, o.astype(dtype)[:, None]))
+        return jnp.stack(cols, -1)
 
-    loaded_i, bonded_i = (0, 1) if kind == "liner" else (1, 0)
-    loaded, bonded = block(loaded_i), block(bonded_i)
+    inner, outer = block(0), block(1)
+    loaded = jnp.where(liner, inner, outer)             # the liner is loaded on its bore
+    bonded = jnp.where(liner, outer, inner)
     A = jnp.concatenate([loaded[..., 3:, :], bonded[..., :3, :]], -2)
     # n = 0: no theta fields; pin solution (2)'s two coefficients instead
-    axisym = jnp.asarray(nb == 0)[..., None]
-    A = A.at[..., 1, :].set(jnp.where(axisym, jnp.eye(6, dtype=dtype)[1], A[..., 1, :]))
-    A = A.at[..., 4, :].set(jnp.where(axisym, jnp.eye(6, dtype=dtype)[4], A[..., 4, :]))
-    rhs = jnp.broadcast_to(jnp.array([-1.0, 0, 0, 0, 0, 0], dtype), A.shape[:-1])
-    scale = jnp.max(jnp.abs(A), -1)                                 # row equilibration
+    axisym = (m == 0)[:, None, None]
+    eye = jnp.eye(6, dtype=dtype)
+    A = A.at[..., 1, :].set(jnp.where(axisym, eye[1], A[..., 1, :]))
+    A = A.at[..., 4, :].set(jnp.where(axisym, eye[4], A[..., 4, :]))
+    rhs = jnp.broadcast_to(-eye[0], A.shape[:-1])
+    scale = jnp.max(jnp.abs(A), -1)                     # row equilibration (stress and displacement rows)
     coef = _solve_small(A / scale[..., None], rhs / scale)
     u = jnp.sum(loaded[..., 0, :] * coef, -1)
-    c3 = u if kind == "liner" else -u
-    c2 = _michell_modes(kind, jnp.asarray(nb, dtype), nu, tau)
-    return jnp.where(jnp.broadcast_to(zero_k, c3.shape), c2, c3)
-
-
-def _columns_at(nf, k, r, nu, logZ, dlogZ, orders, i, ref_i):
-    """Three columns (..., 6, 3) at radius index ``i``, each function scaled by its value at
-    radius index ``ref_i`` (I: the outer surface, K: the inner one)."""
-    cols = []
-    for family, m in zip((1, 2, 3), orders):
-        f = jnp.exp(logZ(m, i) - logZ(m, ref_i))
-        cols.append(_fields(family, nf, k, r, nu, f, f * dlogZ(m, i), jnp.asarray(m, f.dtype)))
-    return jnp.stack(cols, -1)
+    c3 = jnp.where(liner, u, -u)                        # into the body
+    c2 = jnp.where(liner, _michell_modes("liner", nf, nu, tau), _michell_modes("sleeve", nf, nu, tau))
+    return jnp.where(zero_k[None, :], c2.astype(dtype), c3)
