@@ -42,9 +42,10 @@ def flat_layer(K, t, nu):
 
 # ------------------------------------------------------------------------------ Bessel helpers
 def test_bessel_helpers_match_scipy():
-    """K_0 e^x, K_1 e^x; log I_m, I_(m+1)/I_m; log K_m, K_(m-1)/K_m for x in [1e-6, 2500] and
-    orders 0..600 (wherever scipy's ive, kve are finite and nonzero) to 1e-12."""
-    x = np.geomspace(1e-6, layer3d.X_MAX, 120)
+    """K_0 e^x, K_1 e^x; log I_m, I_(m+1)/I_m; log K_m, K_(m-1)/K_m for x in [1e-9, 1e4] and
+    orders 0..600 (wherever scipy's ive, kve are finite and nonzero): ratios to 2e-12, logs to 4e-12
+    absolute (log K_m + x loses eps x to the cancellation at x = 1e4)."""
+    x = np.geomspace(1e-9, 1e4, 120)
     k0, k1 = layer3d.k01e(jnp.asarray(x))
     np.testing.assert_allclose(k0, sp.kve(0, x), rtol=1e-13)
     np.testing.assert_allclose(k1, sp.kve(1, x), rtol=1e-13)
@@ -55,8 +56,8 @@ def test_bessel_helpers_match_scipy():
         ive, kve = sp.ive(m, x), sp.kve(m, x)
         ok_i = (ive > 1e-300) & np.isfinite(ive)
         ok_k = (kve < 1e300) & np.isfinite(kve)
-        np.testing.assert_allclose(np.asarray(logI - x)[ok_i], np.log(ive[ok_i]), rtol=1e-13, atol=1e-12)
-        np.testing.assert_allclose(np.asarray(logK + x)[ok_k], np.log(kve[ok_k]), rtol=1e-13, atol=1e-12)
+        np.testing.assert_allclose(np.asarray(logI - x)[ok_i], np.log(ive[ok_i]), rtol=1e-13, atol=4e-12)
+        np.testing.assert_allclose(np.asarray(logK + x)[ok_k], np.log(kve[ok_k]), rtol=1e-13, atol=4e-12)
         ratio_i = sp.ive(m + 1, x) / ive
         ratio_k = sp.kve(np.abs(m - 1), x) / kve
     ok = ok_i & (sp.ive(m + 1, x) > 1e-300)

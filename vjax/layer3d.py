@@ -67,8 +67,9 @@ I: ratios I_(m+1)/I_m by backward recurrence (Miller; the minimal solution of th
 recurrence I_(m-1) - I_(m+1) = (2 m / x) I_m) from order max(n) + 2 + ``_MILLER_DEPTH``,
 log I_0 from jax's i0e; K: K_0 e^x, K_1 e^x by the trapezoidal rule on
 K_nu(x) e^x = int_0^inf exp(-2 x sinh^2(t/2)) cosh(nu t) dt (exponentially convergent), then
-forward recurrence of K_(m-1)/K_m (stable: K is dominant). Valid for x = k r from 1e-6 to
-2.5e3 and orders up to a few thousand (checked against scipy's ive, kve).
+forward recurrence of K_(m-1)/K_m (stable: K is dominant). Checked against scipy's ive, kve
+for x = k r from 1e-9 to 1e4 and orders 0 to 600 (1e-13); the recurrence depth is sized for
+x <= 2500 from an arbitrary start, the uniform start estimate makes it converge further.
 """
 from __future__ import annotations
 
@@ -80,7 +81,7 @@ import numpy as np
 
 from .green import LAYERS, _michell_modes, _solve_small
 
-X_MAX = 2.5e3          # largest k r for which the I ratios' backward recurrence has converged
+X_MAX = 2.5e3          # k r for which the backward recurrence converges even from a crude start
 _MILLER_DEPTH = int(np.ceil(np.sqrt(45.0 * X_MAX))) + 16   # extra orders: errors damp ~ exp(-D^2 / x)
 _K_NODES = 128         # trapezoidal nodes of the K_0, K_1 integrals
 
@@ -91,7 +92,7 @@ def k01e(x):
     K_nu(x) e^x = int_0^inf exp(-2 x sinh^2(t/2)) cosh(nu t) dt. Step h = min(0.2, 0.7/sqrt(x)):
     the error ~ exp(-2 pi d / h) with d ~ 1.4 (small x) and ~ exp(-2 pi^2 / (x h^2)) (large x,
     a Gaussian of width 1/sqrt(x)), both below 1e-16; 128 nodes reach past the integrand's
-    decay from x = 1e-6 on."""
+    decay from x = 1e-9 on."""
     x = jnp.asarray(x)
     h = jnp.minimum(0.2, 0.7 / jnp.sqrt(x))
     t = h[..., None] * jnp.arange(_K_NODES, dtype=x.dtype)
