@@ -11,7 +11,8 @@ load at 1e4 Pa, Reynolds conditions, 64 x 16 grid (--quick: 32 x 16). Bodies: an
 (2 mm and 5 mm thick), and a 2 mm liner with a 3 mm sleeve on the shaft. L/D = 0.5 and 1;
 the load is the long bearing's at eps = 0.5 times L times 0.5 (L/D = 1) or 0.25 (L/D = 0.5).
 For each: rigid, slices (``axial="slices"``) and 3D (``axial="3d"``): eccentricity, minimum
-film, peak pressure, shaft torque and its viscoelastic part, and the 3D-to-slices change.
+film and its axial position, peak pressure, shaft torque and its viscoelastic part, and the
+3D-to-slices change.
 Writes ``journal_liner3d.csv`` and prints the table.
 """
 from __future__ import annotations
@@ -37,7 +38,8 @@ def main(out_dir="experiments/out", quick=False):
               "liner 5 mm": lambda ax: dict(housing=vjax.liner(sls, 5e-3, axial=ax)),
               "liner 2 mm + sleeve 3 mm": lambda ax: dict(housing=vjax.liner(sls, 2e-3, axial=ax),
                                                           shaft=vjax.sleeve(sls, 3e-3, axial=ax))}
-    header = ["L/D", "bodies", "model", "eccentricity", "min_film_um", "max_pressure_MPa", "torque_shaft_Nm",
+    header = ["L/D", "bodies", "model", "eccentricity", "min_film_um", "min_film_z_over_L", "max_pressure_MPa",
+              "torque_shaft_Nm",
               "torque_viscoelastic_shaft_Nm", "converged", "seconds"]
     rows = []
     for LD, share in ((1.0, 0.5), (0.5, 0.25)):
@@ -49,7 +51,8 @@ def main(out_dir="experiments/out", quick=False):
             t0 = time.perf_counter()
             s = vjax.journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=L, supply_pressure=1e4, options=opt,
                                      throw=False, **kw)
-            rows.append([LD, name, model, float(s.eccentricity), 1e6 * float(s.min_film), 1e-6 * float(s.max_pressure),
+            rows.append([LD, name, model, float(s.eccentricity), 1e6 * float(s.min_film), float(s.min_film_z) / L,
+                         1e-6 * float(s.max_pressure),
                          float(s.torque_shaft), float(s.torque_viscoelastic_shaft), bool(s.converged),
                          round(time.perf_counter() - t0, 1)])
             print(rows[-1], flush=True)
@@ -61,7 +64,7 @@ def main(out_dir="experiments/out", quick=False):
     for LD in (1.0, 0.5):
         for name in bodies:
             a, b = by[(LD, name, "slices")], by[(LD, name, "3d")]
-            lines.append(f"L/D {LD} {name}: " + "  ".join(f"{b[i] / a[i] - 1:+.2%}" for i in (3, 4, 5, 6)))
+            lines.append(f"L/D {LD} {name}: " + "  ".join(f"{b[i] / a[i] - 1:+.2%}" for i in (3, 4, 6, 7)))
     text = "\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "journal_liner3d.txt", text + "\n")

@@ -8,7 +8,7 @@ import pytest
 
 from vjax import Material
 from vjax.layer3d import layer_modes
-from vjax.layer3d_land import dct1, idct1, land_operator
+from vjax.layer3d_land import dct1, idct1, land_operator, whirl_matrix
 from vjax.operator import ring_operator
 
 E, NU = 2e9, 0.42
@@ -68,3 +68,17 @@ def test_axially_uniform_column_is_the_ring_operator():
     ring = ring_operator("sleeve", mat, R, 32, omega=40.0, thickness=T)
     np.testing.assert_allclose(op.symbol[:, 0], ring.symbol, rtol=1e-12)
     assert np.max(np.abs(op.symbol[:, 4] / ring.symbol - 1)) > 0.05
+
+
+def test_whirl_matrix_at_zero_whirl_is_the_steady_operator():
+    """The dense whirl response of the 3D layer at whirl 0 applied to a pressure is the steady land
+    operator's (each theta mode at -k omega; periodic memory), to round-off; at whirl 300 rad/s it
+    differs (the material's frequency dependence)."""
+    mat = Material.sls(1e8, 2e9, 0.01, 0.45)
+    p = jnp.asarray(np.random.default_rng(2).normal(size=(32, 9)))
+    steady = land_operator("sleeve", mat, R, T, 0.08, 32, 8, omega=40.0)(p)
+    for whirl, same in ((0.0, True), (300.0, False)):
+        M = whirl_matrix("sleeve", mat, R, T, 0.08, 32, 8, 40.0, whirl)
+        u = jnp.einsum("abil,il->ab", M, p)
+        err = float(jnp.max(jnp.abs(u - steady)) / jnp.max(jnp.abs(steady)))
+        assert (err < 1e-12) if same else (err > 1e-2), (whirl, err)

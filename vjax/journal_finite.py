@@ -32,7 +32,8 @@ against the pressure's axial length scale (a liner much thinner than L; a bonded
 axial coupling is of the order of its thickness over L). :func:`deformations`. A liner or
 sleeve made with ``axial="3d"`` is instead the bonded layer in 3D elasticity over the land,
 its ends sliding on rigid shoulders at z = +-L/2 (:mod:`vjax.layer3d_land`: FFT in theta,
-DCT-I in z; uniform axial spacing; steady solutions only, no dynamic coefficients yet).
+DCT-I in z; uniform axial spacing; in the dynamic coefficients by its whirl response,
+:func:`vjax.layer3d_land.whirl_matrix`).
 
 Load control: the pressure force of the film on the journal balances ``load`` (N, the
 external force on the journal, total for the bearing); the unknowns are the scaled pressures
@@ -88,7 +89,7 @@ import numpy as np
 
 from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
-from .layer3d_land import LandOperator
+from .layer3d_land import LandOperator, whirl_matrix
 from .operator import RingOperator, circulant, grid, memory_revolutions
 
 GROOVES = ("fixed", "circumferential")
@@ -832,9 +833,6 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, initial=N
     short, stiff bearing). ``kw``: the keyword arguments of :func:`finite_journal_bearing`."""
     if kw.get("cavitation", "reynolds") in ("half_sommerfeld", "jfo"):
         raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
-    if any(getattr(kw.get(b), "axial", None) == "3d" for b in ("housing", "shaft")):
-        raise ValueError("the dynamic coefficients of a finite bearing with a 3D layer (axial='3d') are not built "
-                         "yet; use axial='slices'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
     x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr)
@@ -849,8 +847,9 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
     the housing and the shaft. The grid is fixed in space (the groove fixed in the bearing): a
     journal motion changes the film by -(dX cos theta + dY sin theta) and adds its rate to
     dh/dt; each axial slice's bodies respond to the perturbed loading pressure by their whirl
-    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's),
-    which adds to the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
+    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's; a 3D
+    layer by :func:`vjax.layer3d_land.whirl_matrix`, which couples the sections), which adds to
+    the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
 
         (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
 
@@ -869,11 +868,19 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
     G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0)[1])(pz0)                     # (2, N)
     slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
 
+    slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
+    layers = [b for b in bodies if b[0] is not None and b[0].axial == "3d"]
+
     def one(W):
-        M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in bodies
-                if body is not None)
-        GU = (J_U + 1j * W * J_Ud)[:, :, 1:-1]      # the end nodes hold ambient pressure: no response
-        A = J_p + (jnp.einsum("rkj,ki->rij", GU, M) * slope[None]).reshape(N, N)
+        GU = J_U + 1j * W * J_Ud                    # (N, n, m + 1): the film's sensitivity to U at every node
+        dA = jnp.zeros((N, n, m - 1), GU.dtype)
+        if slices:                                  # each axial section by its plane ring's whirl operator;
+            M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in slices)
+            dA = dA + jnp.einsum("rkj,ki->rij", GU[:, :, 1:-1], M)   # the end sections, at ambient pressure, stay
+        for body, R_b, omega_b in layers:           # a 3D layer couples the sections: its ends move too
+            M3 = whirl_matrix(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
+            dA = dA + jnp.einsum("rkj,kjil->ril", GU, M3[:, :, :, 1:-1])
+        A = J_p + (dA * slope[None]).reshape(N, N)
         b = J_s[:, :2] + 1j * W * J_s[:, 2:]
         return -G @ jnp.linalg.solve(A, -b)
 
@@ -911,9 +918,6 @@ def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, 
     if kw.get("cavitation") == "jfo":
         raise ValueError("cavitation='jfo': the dynamic coefficients of a finite bearing with the mass-conserving "
                          "cavity are not built yet (its film fraction has its own dynamics); use 'reynolds'")
-    if any(getattr(kw.get(b), "axial", None) == "3d" for b in ("housing", "shaft")):
-        raise ValueError("the dynamic coefficients of a finite bearing with a 3D layer (axial='3d') are not built "
-                         "yet; use axial='slices'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
     housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),

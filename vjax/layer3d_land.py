@@ -99,15 +99,37 @@ def land_operator(kind: str, material: Material, R, thickness, length, n: int, m
 @partial(jax.jit, static_argnums=(0, 5, 6, 8))
 def _symbol(kind, material, R, thickness, length, n, m, omega, memory):
     """(n // 2 + 1, m + 1) symbol (m/Pa); compiled once per (kind, n, m, memory, material shape)."""
+    J = effective_compliance(material, jnp.arange(n // 2 + 1), omega, memory)
+    return R * J[:, None] * _geometry(kind, material.nu, R, thickness, length, n, m)
+
+
+def _geometry(kind, nu, R, thickness, length, n, m):
+    """The symbol's elastic part, E = 1 (n // 2 + 1, m + 1): the plane ring's element symbol plus
+    the 3D correction of the base mode and its nearest aliases (module docstring)."""
     k = np.arange(n // 2 + 1)
-    images = np.abs(k[:, None] + n * np.array(ALIASES)[None, :])           # (n/2 + 1, 3)
+    images = np.abs(k[:, None] + n * np.array(ALIASES)[None, :])           # (n/2 + 1, len(ALIASES))
     kR = jnp.arange(m + 1) * jnp.pi * R / length
     tau = thickness / R
-    nu = material.nu
-    c3 = layer_modes(kind, images, kR, nu, tau)                             # (n/2 + 1, 3, m + 1)
-    c2 = green.mode_compliance(kind, images, nu, thickness_ratio=tau)      # (n/2 + 1, 3)
+    c3 = layer_modes(kind, images, kR, nu, tau)                             # (n/2 + 1, aliases, m + 1)
+    c2 = green.mode_compliance(kind, images, nu, thickness_ratio=tau)      # (n/2 + 1, aliases)
     weight = jnp.sinc(images / n)                                           # sin(m alpha) / (m alpha)
-    correction = jnp.sum((c3 - c2[..., None]) * weight[..., None], axis=1)  # (n/2 + 1, m + 1)
-    base = element_symbol(kind, n, R, nu, thickness=thickness)             # (n/2 + 1,)
-    J = effective_compliance(material, jnp.arange(n // 2 + 1), omega, memory)
-    return R * (J * base)[:, None] + R * J[:, None] * correction
+    correction = jnp.sum((c3 - c2[..., None]) * weight[..., None], axis=1)
+    return element_symbol(kind, n, R, nu, thickness=thickness)[:, None] + correction
+
+
+def whirl_matrix(kind, material, R, thickness, length, n: int, m: int, omega, whirl):
+    """Dense response (n, m + 1, n, m + 1) (m/Pa, complex) of the 3D layer to a small pressure
+    perturbation p(theta, z) e^(i whirl t) on a pattern moving at ``omega`` (rad/s) relative to
+    the body: u[a, b] = sum M[a, b, i, l] p[i, l]. Theta mode k (full FFT, signed) responds at its
+    own frequency -k omega + whirl, as :func:`vjax.operator.whirl_symbol` (the Nyquist mode the
+    mean of its two), times the geometry of :func:`land_operator`; DCT-I in z."""
+    G = _geometry(kind, material.nu, R, thickness, length, n, m)            # (n/2 + 1, m + 1)
+    k = jnp.fft.fftfreq(n, 1.0 / n)
+    J = material.compliance(-k * omega + whirl)
+    if n % 2 == 0:
+        J = J.at[n // 2].set(0.5 * (material.compliance(-0.5 * n * omega + whirl)
+                                    + material.compliance(0.5 * n * omega + whirl)))
+    S = R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]   # (n, m + 1), full FFT order
+    unit = jnp.eye(n * (m + 1), dtype=S.dtype).reshape(n * (m + 1), n, m + 1)
+    u = jnp.fft.ifft(idct1(S * dct1(jnp.fft.fft(unit, axis=1), axis=2), axis=2), axis=1)   # (i l, a, b)
+    return jnp.moveaxis(u.reshape(n, m + 1, n, m + 1), (0, 1), (2, 3))
