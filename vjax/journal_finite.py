@@ -31,8 +31,9 @@ each body; the exact limit of a long bearing, and of any bearing whose bodies ar
 against the pressure's axial length scale (a liner much thinner than L; a bonded layer's
 axial coupling is of the order of its thickness over L). :func:`deformations`. A liner or
 sleeve made with ``axial="3d"`` is instead the bonded layer in 3D elasticity over the land,
-its ends sliding on rigid shoulders at z = +-L/2 (:mod:`vjax.layer3d_land`: FFT in theta,
-DCT-I in z; uniform axial spacing; in the dynamic coefficients by its whirl response,
+its ends sliding on rigid shoulders at z = +-L/2 (:mod:`vjax.layer3d_land`: the pressure
+piecewise linear in z, FFT in theta and DCT-I in z; uniform axial spacing; in the dynamic
+coefficients by its whirl response,
 :func:`vjax.layer3d_land.whirl_matrix`).
 
 Load control: the pressure force of the film on the journal balances ``load`` (N, the
@@ -275,6 +276,7 @@ def deformations(p_load, pr: Params, z):
     # F_x + i F_y = -R dtheta sum_j w_j conj(P[1, j]) = -(load_x + i load_y) at equilibrium
     mean = (P[1] @ wz) / pr.L
     P = P.at[1].add((pr.load[0] - 1j * pr.load[1]) / (pr.R * 2 * jnp.pi / n * pr.L) - mean)
+
     def deform(op):
         if op is None:
             return zero
