@@ -12,6 +12,12 @@ the thesis's body for that ring, or None for a rigid one).
 - :func:`sleeve`: a layer loaded on its outer surface, bonded to a rigid core (polymer-sleeved
   shafts and rollers, inner races).
 
+A liner or sleeve with ``axial="3d"`` is, in a finite journal bearing (``length=``), the bonded
+layer in 3D elasticity over the land (:mod:`vjax.layer3d`, :mod:`vjax.layer3d_land`: its ends
+slide on rigid shoulders at the land's ends); the default ``"slices"`` deforms each axial
+section as the plane ring. Plane scenes (and the infinitely long bearing) use the plane-strain
+layer either way: it is the 3D layer's long-wave limit.
+
 Which to pick: a polymer part much thicker than the contact and its clearance (thesis
 plates, solid polymer shafts) is a hole or a disc; a bushing, liner or sleeve whose
 thickness is comparable to the contact width or the radius is a liner or a sleeve. Layers
@@ -41,6 +47,7 @@ class Body:
     ref_length: jax.Array | None = None
     thickness: jax.Array | None = None
     kind: str = dataclasses.field(default="hole", metadata=dict(static=True))
+    axial: str = dataclasses.field(default="slices", metadata=dict(static=True))
 
     def operator(self, R, n: int, omega=0.0, memory="periodic"):
         """Steady-state operator u = M sigma on the loaded surface of radius ``R`` (m), ``n``
@@ -53,6 +60,12 @@ class Body:
         moving at ``omega`` relative to the body (:func:`vjax.operator.whirl_symbol`)."""
         ref = 1.0 if self.ref_length is None else self.ref_length
         return whirl_symbol(_GREEN[self.kind], self.material, R, n, omega, whirl, ref, self.thickness)
+
+    def land_operator(self, R, n: int, m: int, length, omega=0.0, memory="periodic"):
+        """A 3D layer's operator on a finite bearing's land grid (``n`` theta elements by ``m`` + 1
+        uniform axial nodes over ``length`` m; :func:`vjax.layer3d_land.land_operator`)."""
+        from .layer3d_land import land_operator
+        return land_operator(self.kind, self.material, R, self.thickness, length, n, m, omega, memory)
 
     def at_temperature(self, shift, T) -> "Body":
         """The same body with its material at temperature ``T`` (C), see
@@ -85,23 +98,29 @@ def half_plane(material: Material, ref_length=1.0) -> Body:
     return _with_ref_length("half_plane", material, ref_length)
 
 
-def _layer(kind, material, thickness):
+AXIAL = ("slices", "3d")
+
+
+def _layer(kind, material, thickness, axial):
     _checks.instance("material", material, Material, "a vjax.Material")
     _checks.positive("thickness", thickness)
     _checks.scalar("thickness", thickness)
-    return Body(material, thickness=thickness, kind=kind)
+    _checks.one_of("axial", axial, AXIAL)
+    return Body(material, thickness=thickness, kind=kind, axial=axial)
 
 
-def liner(material: Material, thickness) -> Body:
+def liner(material: Material, thickness, axial: str = "slices") -> Body:
     """A layer of ``material``, ``thickness`` (m) thick, loaded on its bore and bonded on its
-    outer surface to a rigid housing (Michell's solution, :func:`vjax.green.mode_compliance`)."""
-    return _layer("liner", material, thickness)
+    outer surface to a rigid housing (Michell's solution, :func:`vjax.green.mode_compliance`).
+    ``axial``: how a finite journal bearing deforms it over the land, "slices" (plane strain
+    per axial section) or "3d" (the bonded layer in 3D elasticity, :mod:`vjax.layer3d_land`)."""
+    return _layer("liner", material, thickness, axial)
 
 
-def sleeve(material: Material, thickness) -> Body:
+def sleeve(material: Material, thickness, axial: str = "slices") -> Body:
     """A layer of ``material``, ``thickness`` (m) thick, loaded on its outer surface and bonded
-    on its inner surface to a rigid core."""
-    return _layer("sleeve", material, thickness)
+    on its inner surface to a rigid core; ``axial`` as for :func:`liner`."""
+    return _layer("sleeve", material, thickness, axial)
 
 
 def as_body(name: str, x, default, allowed) -> Body | None:

@@ -29,7 +29,12 @@ its own pressure (plane strain: no axial coupling between the slices), with the 
 steady-state viscoelastic operator, the pattern fixed in space moving at -omega relative to
 each body; the exact limit of a long bearing, and of any bearing whose bodies are thin
 against the pressure's axial length scale (a liner much thinner than L; a bonded layer's
-axial coupling is of the order of its thickness over L). :func:`deformations`.
+axial coupling is of the order of its thickness over L). :func:`deformations`. A liner or
+sleeve made with ``axial="3d"`` is instead the bonded layer in 3D elasticity over the land,
+its ends sliding on rigid shoulders at z = +-L/2 (:mod:`vjax.layer3d_land`: the pressure
+piecewise linear in z, FFT in theta and DCT-I in z; uniform axial spacing; in the dynamic
+coefficients by its whirl response,
+:func:`vjax.layer3d_land.whirl_matrix`).
 
 Load control: the pressure force of the film on the journal balances ``load`` (N, the
 external force on the journal, total for the bearing); the unknowns are the scaled pressures
@@ -86,6 +91,7 @@ import numpy as np
 
 from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
+from .layer3d_land import LandOperator, whirl_matrix
 from .operator import RingOperator, circulant, grid, memory_revolutions
 
 GROOVES = ("fixed", "circumferential")
@@ -182,8 +188,8 @@ class Params:
     groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
     circumferential: jax.Array   # 1: the groove runs round the mid-width (its inlet flow is axial), else 0
     s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
-    op_B: RingOperator | None    # each axial slice's ring operator (plane strain); None: rigid
-    op_J: RingOperator | None
+    op_B: RingOperator | LandOperator | None   # each axial slice's ring operator (plane strain), or a
+    op_J: RingOperator | LandOperator | None   # 3D layer's land operator; None: rigid
     compliance: jax.Array        # the bodies' compliance scaled by this (1; less in the solver's continuation)
     smoothing: jax.Array         # mu of the "jfo" switch (0: exact; more in the solver's homotopy)
     x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
@@ -271,8 +277,20 @@ def deformations(p_load, pr: Params, z):
     # F_x + i F_y = -R dtheta sum_j w_j conj(P[1, j]) = -(load_x + i load_y) at equilibrium
     mean = (P[1] @ wz) / pr.L
     P = P.at[1].add((pr.load[0] - 1j * pr.load[1]) / (pr.R * 2 * jnp.pi / n * pr.L) - mean)
-    deform = lambda op: zero if op is None else jnp.fft.irfft(pr.compliance * op.symbol[:, None] * P, n, axis=0)
+
+    def deform(op):
+        if op is None:
+            return zero
+        if isinstance(op, LandOperator):            # a 3D layer: DCT-I in z as well
+            return op.apply_theta_modes(pr.compliance * P)
+        return jnp.fft.irfft(pr.compliance * op.symbol[:, None] * P, n, axis=0)
     return deform(pr.op_B), deform(pr.op_J)
+
+
+def _first_mode_symbol(op):
+    """The symbol (m/Pa) of theta mode 1 for an axially uniform pressure: the ring operator's,
+    which a 3D layer's z-uniform column equals."""
+    return op.symbol[1, 0] if isinstance(op, LandOperator) else op.symbol[1]
 
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None):
@@ -331,7 +349,7 @@ def _guess(pr: Params, cfg: Config):
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
     # the journal: c eps e^{i a} plus the bodies' rigid displacement under the load's first
     # mode (amplitude |symbol_1| W / (pi R L), along the film's minimum)
-    s1 = pr.compliance * sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
+    s1 = pr.compliance * sum(_first_mode_symbol(op) for op in (pr.op_B, pr.op_J) if op is not None)
     moved = c * eps + s1 * pr.W / (jnp.pi * R * L)
     position = jnp.abs(moved) / c * jnp.exp(1j * (a - jnp.angle(moved)))
     n = cfg.n
@@ -603,6 +621,9 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
                          f"got {supply_width!r}")
     _checks.load(load)
     housing, shaft = bodies_at(R, radial_clearance, housing, shaft, temperature, shift)
+    if any(b is not None and b.axial == "3d" for b in (housing, shaft)) and options.spacing != "uniform":
+        raise ValueError("a 3D layer (axial='3d') needs uniform axial nodes (its cosine modes): "
+                         "FiniteJournalOptions(spacing='uniform')")
     if tilt is not None:
         _checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
@@ -659,10 +680,19 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
                   omega_J=f(omega_shaft), p_ref=W / (2 * f(R) * f(length)), groove=f(groove),
                   circumferential=f(circumferential), s=f(s),
                   # the pressure pattern is fixed in space: it moves at -omega relative to each body
-                  op_B=None if housing is None else housing.operator(R, groove.shape[0], -omega_housing, memory),
-                  op_J=None if shaft is None else shaft.operator(R - radial_clearance, groove.shape[0],
-                                                                 omega=-omega_shaft, memory=memory),
+                  op_B=_operator(housing, R, groove.shape, length, -omega_housing, memory),
+                  op_J=_operator(shaft, R - radial_clearance, groove.shape, length, -omega_shaft, memory),
                   compliance=f(1.0), smoothing=f(0.0), x0=jnp.zeros(unknowns + 2, dtype))
+
+
+def _operator(body, R, shape, length, omega, memory):
+    """A body's operator on the (n, m + 1) grid: None (rigid), the plane ring's for the slices, a
+    3D layer's land operator."""
+    if body is None:
+        return None
+    if body.axial == "3d":
+        return body.land_operator(R, shape[0], shape[1] - 1, length, omega, memory)
+    return body.operator(R, shape[0], omega, memory)
 
 
 @jax.jit
@@ -859,8 +889,9 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
     the housing and the shaft. The grid is fixed in space (the groove fixed in the bearing): a
     journal motion changes the film by -(dX cos theta + dY sin theta) and adds its rate to
     dh/dt; each axial slice's bodies respond to the perturbed loading pressure by their whirl
-    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's),
-    which adds to the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
+    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's; a 3D
+    layer by :func:`vjax.layer3d_land.whirl_matrix`, which couples the sections), which adds to
+    the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
 
         (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
 
@@ -881,11 +912,19 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
     G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0, None)[1])(pz0)               # (2, N)
     slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
 
+    slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
+    layers = [b for b in bodies if b[0] is not None and b[0].axial == "3d"]
+
     def one(W):
-        M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in bodies
-                if body is not None)
-        GU = (J_U + 1j * W * J_Ud)[:, :, 1:-1]      # the end nodes hold ambient pressure: no response
-        A = J_p + 1j * W * J_pd + (jnp.einsum("rkj,ki->rij", GU, M) * slope[None]).reshape(N, N)
+        GU = J_U + 1j * W * J_Ud                    # (N, n, m + 1): the film's sensitivity to U at every node
+        dA = jnp.zeros((N, n, m - 1), GU.dtype)
+        if slices:                                  # each axial section by its plane ring's whirl operator;
+            M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in slices)
+            dA = dA + jnp.einsum("rkj,ki->rij", GU[:, :, 1:-1], M)   # the end sections, at ambient pressure, stay
+        for body, R_b, omega_b in layers:           # a 3D layer couples the sections: its ends move too
+            M3 = whirl_matrix(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
+            dA = dA + jnp.einsum("rkj,kjil->ril", GU, M3[:, :, :, 1:-1])
+        A = J_p + 1j * W * J_pd + (dA * slope[None]).reshape(N, N)
         b = J_s[:, :2] + 1j * W * J_s[:, 2:]
         return -G @ jnp.linalg.solve(A, -b)
 

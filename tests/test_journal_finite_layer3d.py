@@ -1,0 +1,64 @@
+"""The finite journal bearing with a 3D bonded layer (``vjax.liner(..., axial="3d")``,
+``vjax.sleeve(..., axial="3d")``): at the solution each body's displacement is its land
+operator (vjax.layer3d_land) applied to the solved pressure, evaluated independently; the
+dynamic coefficients at zero whirl are the static stiffness; what the 3D layer does not
+support is refused by name."""
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+import vjax
+from vjax import FiniteJournalOptions, journal_bearing, reference
+
+R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
+D = 2 * R
+SLS = vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4)
+OPT = FiniteJournalOptions(n=32, m=16)
+W = 0.5 * float(reference.long_bearing(0.5, R, C, ETA, 0.5 * WJ * (R - C), "reynolds")["load"]) * D
+LOAD = jnp.array([0.0, -W])           # a load vector: its derivatives give the static stiffness
+LINER, SLEEVE = vjax.liner(SLS, 2e-3, axial="3d"), vjax.sleeve(SLS, 3e-3, axial="3d")
+KW = dict(omega_shaft=WJ, length=D, housing=LINER, shaft=SLEEVE, supply_pressure=1e4, options=OPT)
+
+
+@pytest.fixture(scope="module")
+def solution():
+    return LINER, SLEEVE, journal_bearing(R, C, ETA, LOAD, **KW)
+
+
+def test_bodies_deform_as_their_3d_land_operators(solution):
+    """The bore's displacement is the liner's land operator (pattern fixed: omega 0) and the
+    journal's the sleeve's (pattern at -omega_shaft relative to it: each mode at its own
+    frequency) applied to the solved pressure, to 1e-9 of the peak; and they differ from the
+    plane-strain slices' by more than that (the 3D coupling is seen)."""
+    liner, sleeve, s = solution
+    assert bool(s.converged)
+    for body, radius, omega, u in ((liner, R, 0.0, s.displacement), (sleeve, R - C, -WJ, s.displacement_shaft)):
+        op = body.land_operator(radius, OPT.n, OPT.m, D, omega)
+        peak = float(jnp.max(jnp.abs(u)))
+        assert float(jnp.max(jnp.abs(op(s.pressure) - u))) < 1e-9 * peak
+        ring = vjax.Body(body.material, thickness=body.thickness, kind=body.kind).operator(radius, OPT.n, omega)
+        slices = jnp.fft.irfft(ring.symbol[:, None] * jnp.fft.rfft(s.pressure, axis=0), OPT.n, axis=0)
+        assert float(jnp.max(jnp.abs(slices - u))) > 1e-3 * peak
+
+
+def test_what_the_3d_layer_does_not_support_is_refused():
+    liner = vjax.liner(SLS, 5e-3, axial="3d")
+    with pytest.raises(ValueError, match="uniform axial nodes"):
+        journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=D, housing=liner,
+                        options=FiniteJournalOptions(n=32, m=16, spacing="cosine"))
+    with pytest.raises(ValueError, match="axial"):
+        vjax.liner(SLS, 5e-3, axial="3D")
+    assert vjax.liner(SLS, 5e-3).axial == "slices"
+
+
+def test_coefficients_at_zero_whirl_are_the_static_stiffness():
+    """K(0) of the bearing with a 3D liner (at rest) and a 3D sleeve (turning with the shaft), from
+    the layers' whirl responses, is the inverse of jax.jacfwd of the steady position with respect
+    to the load vector (implicit derivatives through the solve) to 1e-7; K at 100 rad/s differs
+    (the polymer's frequency dependence)."""
+    J = np.asarray(jax.jit(jax.jacfwd(lambda load: journal_bearing(R, C, ETA, load, **KW).position))(LOAD))
+    co = vjax.journal_coefficients(R, C, ETA, LOAD, [0.0, 100.0], **KW)
+    K = np.linalg.inv(J)
+    assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
+    assert np.max(np.abs(np.asarray(co.stiffness[1] - co.stiffness[0]))) > 1e-3 * np.abs(K).max()
