@@ -288,6 +288,7 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
         # the stationary side: the shaft when the liner turns, the housing when the shaft does
         tq = r.torque_shaft if turning == "liner" else r.torque
         return tq / length, r.converged
+    model.sequential = True       # the soft liner's solve falls back on continuation: no vmap over points
     visc = getattr(viscosity, "__name__", None) if callable(viscosity) else viscosity
     model.scene = (f"journal_bearing(R={R}, radial_clearance={radial_clearance}, length={length}, liner "
                    f"thickness={thickness}, viscosity={visc}, turning={turning!r}, n={n}, m={m}, memory={memory!r})")
@@ -357,7 +358,13 @@ def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table
 
     def residuals(x):
         mat, shift = params.unpack(x)
-        tq, ok = jax.vmap(lambda a, b, c: model(mat, shift, a, b, c))(rpm, T, load)
+        point = lambda a, b, c: model(mat, shift, a, b, c)     # noqa: E731
+        if getattr(model, "sequential", False):
+            # one point after the other: the solve's fallbacks (restarts, continuation) are
+            # branches, which vmap turns into selects that run every branch for every point
+            tq, ok = jax.lax.map(lambda p: point(*p), (rpm, T, load))
+        else:
+            tq, ok = jax.vmap(point)(rpm, T, load)
         r_t = (tq - meas) / sig
         if dma_table is not None:
             r_d = math.sqrt(w_dma) * log_residual(mat, shift, dma_table) / s_dma
