@@ -64,7 +64,7 @@ from vjax.material import Material, WLF
 from . import optim
 
 __all__ = ["TorqueData", "TorqueFormatError", "read_torque_csv", "write_torque_csv", "roller_model", "pin_model",
-           "journal_model", "water_viscosity",
+           "journal_model", "water_viscosity", "evaluate",
            "Params", "TorqueFit", "fit_torque", "residual_jacobian", "identifiability", "gauss_newton_cov",
            "gradient_check"]
 
@@ -347,6 +347,17 @@ class Params:
 
 
 # ---- objective -------------------------------------------------------------------------
+def evaluate(model, material, shift, rpm, T, load):
+    """(torque, converged) of ``model`` at the points (arrays rpm, T, load): batched by vmap,
+    or one point after the other when ``model.sequential`` (the journal: its solve's fallbacks,
+    restarts and continuation, are branches, which vmap turns into selects that run every
+    branch for every point)."""
+    point = lambda a, b, c: model(material, shift, a, b, c)     # noqa: E731
+    if getattr(model, "sequential", False):
+        return jax.lax.map(lambda p: point(*p), (rpm, T, load))
+    return jax.vmap(point)(rpm, T, load)
+
+
 def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table, w_dma, s_dma):
     rpm, T, load = (jnp.asarray(a) for a in (data.rpm, data.T, data.load))
     meas = jnp.asarray(data.torque)
@@ -358,13 +369,7 @@ def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table
 
     def residuals(x):
         mat, shift = params.unpack(x)
-        point = lambda a, b, c: model(mat, shift, a, b, c)     # noqa: E731
-        if getattr(model, "sequential", False):
-            # one point after the other: the solve's fallbacks (restarts, continuation) are
-            # branches, which vmap turns into selects that run every branch for every point
-            tq, ok = jax.lax.map(lambda p: point(*p), (rpm, T, load))
-        else:
-            tq, ok = jax.vmap(point)(rpm, T, load)
+        tq, ok = evaluate(model, mat, shift, rpm, T, load)
         r_t = (tq - meas) / sig
         if dma_table is not None:
             r_d = math.sqrt(w_dma) * log_residual(mat, shift, dma_table) / s_dma
