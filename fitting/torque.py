@@ -14,8 +14,10 @@ standard deviation of each torque (same unit, > 0). Columns are matched by name
 
 Model: a bearing scene evaluated at each point with the material at the point's
 temperature (:meth:`vjax.Material.at_temperature`): :func:`roller_model` (needle roller
-bearing, torque on the fixed outer ring) or :func:`pin_model` (a polymer pin joint: rigid
-pin turning in a viscoelastic plate). Both scenes carry implicit derivatives, so the
+bearing, torque on the fixed outer ring), :func:`pin_model` (a polymer pin joint: rigid
+pin turning in a viscoelastic plate) or :func:`journal_model` (a finite lubricated journal
+bearing with a liner of the material; the CSV's load and torque are then the rig's totals
+divided by the bearing's length). The scenes carry implicit derivatives, so the
 gradient of the torque with respect to the material is one linear solve per solve at the
 converged state, not a differentiation through iterations.
 
