@@ -14,8 +14,10 @@ standard deviation of each torque (same unit, > 0). Columns are matched by name
 
 Model: a bearing scene evaluated at each point with the material at the point's
 temperature (:meth:`vjax.Material.at_temperature`): :func:`roller_model` (needle roller
-bearing, torque on the fixed outer ring) or :func:`pin_model` (a polymer pin joint: rigid
-pin turning in a viscoelastic plate). Both scenes carry implicit derivatives, so the
+bearing, torque on the fixed outer ring), :func:`pin_model` (a polymer pin joint: rigid
+pin turning in a viscoelastic plate) or :func:`journal_model` (a finite lubricated journal
+bearing with a liner of the material; the CSV's load and torque are then the rig's totals
+divided by the bearing's length). The scenes carry implicit derivatives, so the
 gradient of the torque with respect to the material is one linear solve per solve at the
 converged state, not a differentiation through iterations.
 
@@ -64,6 +66,7 @@ from vjax.material import Material, WLF
 from . import optim
 
 __all__ = ["TorqueData", "TorqueFormatError", "read_torque_csv", "write_torque_csv", "roller_model", "pin_model",
+           "journal_model", "water_viscosity", "evaluate",
            "Params", "TorqueFit", "fit_torque", "residual_jacobian", "identifiability", "gauss_newton_cov",
            "gradient_check"]
 
@@ -232,6 +235,68 @@ def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic"):
     return model
 
 
+def water_viscosity(T):
+    """Dynamic viscosity of water (Pa s) at ``T`` (C), Vogel's equation
+    eta = 2.414e-5 * 10^(247.8 / (T + 273.15 - 140)) (1.00e-3 at 20 C, 0.65e-3 at 40 C,
+    0.40e-3 at 70 C; within a few % of tabulated values from 0 to 100 C)."""
+    return 2.414e-5 * 10.0 ** (247.8 / (T + 273.15 - 140.0))
+
+
+_TURNING = ("liner", "shaft")
+
+
+def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, viscosity=water_viscosity,
+                  turning="liner", n=32, m=8, memory="periodic"):
+    """Finite journal bearing with a liner of the fitted material (:func:`vjax.journal_bearing`
+    with ``length=``, housing :func:`vjax.liner`): bore radius ``R``, ``radial_clearance``,
+    axial ``length``, liner ``thickness`` (m) bonded in a rigid housing, rigid shaft, axial
+    groove at ambient pressure opposite the load, Reynolds cavitation, ``n`` x ``m`` film cells.
+
+    Units: the CSV (and so ``load`` and the returned torque) are per unit axial length, as for
+    the other scenes: a rig's total load (N) and total friction torque (N m) divided by
+    ``length``. The model multiplies the load by ``length`` for the bearing and divides the
+    bearing's total torque by it.
+
+    ``viscosity``: the lubricant's viscosity (Pa s), a number (held fixed) or a function of the
+    temperature (C) (default :func:`water_viscosity`: a water-lubricated bearing).
+
+    ``turning``: which side turns at the given rpm; the friction torque returned is the one on
+    the stationary side (what a torque arm on it measures), positive in the sense of rotation.
+    "liner" (default): the lined housing turns on a fixed shaft (a lined wheel, roller or pulley
+    on an axle); the film's pressure, fixed in space, travels round the liner, which answers with
+    its modulus at the passing frequencies (the Prony terms and the shift law). "shaft": the shaft
+    turns in a fixed lined housing; the liner then carries a pressure field at rest, its steady
+    response is the relaxed one (E0 alone), and the torque carries no information about the
+    Prony terms or the shift law (their torque derivatives are exactly zero) - use it to fit E0
+    only. Signature ``model(material, shift, rpm, T, load)``."""
+    from vjax import _checks
+    for name, v in (("R", R), ("radial_clearance", radial_clearance), ("length", length),
+                    ("thickness", thickness)):
+        _checks.positive(name, v)
+    if not radial_clearance < R:
+        raise ValueError(f"radial_clearance must be < R, got {radial_clearance} >= {R}")
+    _checks.one_of("turning", turning, _TURNING)
+    if not callable(viscosity):
+        _checks.positive("viscosity", viscosity)
+    eta = viscosity if callable(viscosity) else (lambda T, v=float(viscosity): v)
+    options = vjax.FiniteJournalOptions(n=n, m=m)
+
+    def model(material, shift, rpm, T, load):
+        w = rpm * (2 * jnp.pi / 60.0)
+        speeds = dict(omega_housing=w) if turning == "liner" else dict(omega_shaft=w)
+        r = vjax.journal_bearing(R, radial_clearance, eta(T), load * length, length=length,
+                                 housing=vjax.liner(material, thickness), memory=memory, temperature=T, shift=shift,
+                                 options=options, throw=False, **speeds)
+        # the stationary side: the shaft when the liner turns, the housing when the shaft does
+        tq = r.torque_shaft if turning == "liner" else r.torque
+        return tq / length, r.converged
+    model.sequential = True       # the soft liner's solve falls back on continuation: no vmap over points
+    visc = getattr(viscosity, "__name__", None) if callable(viscosity) else viscosity
+    model.scene = (f"journal_bearing(R={R}, radial_clearance={radial_clearance}, length={length}, liner "
+                   f"thickness={thickness}, viscosity={visc}, turning={turning!r}, n={n}, m={m}, memory={memory!r})")
+    return model
+
+
 # ---- parameters ------------------------------------------------------------------------
 @dataclasses.dataclass(frozen=True)
 class Params:
@@ -284,6 +349,17 @@ class Params:
 
 
 # ---- objective -------------------------------------------------------------------------
+def evaluate(model, material, shift, rpm, T, load):
+    """(torque, converged) of ``model`` at the points (arrays rpm, T, load): batched by vmap,
+    or one point after the other when ``model.sequential`` (the journal: its solve's fallbacks,
+    restarts and continuation, are branches, which vmap turns into selects that run every
+    branch for every point)."""
+    point = lambda a, b, c: model(material, shift, a, b, c)     # noqa: E731
+    if getattr(model, "sequential", False):
+        return jax.lax.map(lambda p: point(*p), (rpm, T, load))
+    return jax.vmap(point)(rpm, T, load)
+
+
 def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table, w_dma, s_dma):
     rpm, T, load = (jnp.asarray(a) for a in (data.rpm, data.T, data.load))
     meas = jnp.asarray(data.torque)
@@ -295,7 +371,7 @@ def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table
 
     def residuals(x):
         mat, shift = params.unpack(x)
-        tq, ok = jax.vmap(lambda a, b, c: model(mat, shift, a, b, c))(rpm, T, load)
+        tq, ok = evaluate(model, mat, shift, rpm, T, load)
         r_t = (tq - meas) / sig
         if dma_table is not None:
             r_d = math.sqrt(w_dma) * log_residual(mat, shift, dma_table) / s_dma

@@ -34,8 +34,10 @@ def _parser():
     p.add_argument("data", help="torque CSV: speed_rpm, temperature_C, load_N_per_m, torque_Nm_per_m[, scatter]")
     p.add_argument("--material", required=True, help="start material JSON (Prony + WLF), e.g. from vjax-fit")
     p.add_argument("--out", required=True, help="output material JSON path")
-    p.add_argument("--scene", choices=["roller", "pin"], default="roller",
-                   help="roller: needle roller bearing, torque on the fixed outer ring; pin: pin in a plate")
+    p.add_argument("--scene", choices=["roller", "pin", "journal"], default="roller",
+                   help="roller: needle roller bearing, torque on the fixed outer ring; pin: pin in a plate; "
+                        "journal: finite journal bearing with a liner of the material (load and torque per unit "
+                        "length: the rig's totals over --length)")
     g = p.add_argument_group("roller bearing geometry (m)")
     g.add_argument("--R-outer", type=float, default=6e-3, help="outer raceway radius (default 6e-3)")
     g.add_argument("--R-inner", type=float, default=4e-3, help="inner raceway radius (default 4e-3)")
@@ -43,11 +45,21 @@ def _parser():
     g.add_argument("--rollers", type=int, default=9, help="number of rollers (default 9)")
     g.add_argument("--diametral-clearance", type=float, default=None,
                    help="diametral clearance (default from the radii); a preload is negative: --diametral-clearance=-5e-6")
-    g = p.add_argument_group("pin joint geometry (m)")
-    g.add_argument("--R", type=float, default=0.01, help="hole radius (default 0.01)")
-    g.add_argument("--radial-clearance", type=float, default=1e-4,
-                   help="radial clearance hole radius - pin radius (default 1e-4)")
-    p.add_argument("--n", type=int, default=None, help="elements per ring (default 256 roller, 128 pin)")
+    g = p.add_argument_group("pin joint and journal bearing geometry (m)")
+    g.add_argument("--R", type=float, default=None, help="hole (bore) radius (default 0.01 pin, 0.025 journal)")
+    g.add_argument("--radial-clearance", type=float, default=None,
+                   help="radial clearance hole radius - pin radius (default 1e-4 pin, 5e-5 journal)")
+    g = p.add_argument_group("journal bearing (--scene journal)")
+    g.add_argument("--length", type=float, default=0.05, help="axial length L (m, default 0.05)")
+    g.add_argument("--thickness", type=float, default=0.01, help="liner thickness (m, default 0.01)")
+    g.add_argument("--viscosity", type=float, default=None,
+                   help="lubricant viscosity (Pa s), held fixed (default: water's, by temperature)")
+    g.add_argument("--turning", choices=["liner", "shaft"], default="liner",
+                   help="the side turning at speed_rpm (default liner: the lined housing on a fixed shaft; "
+                        "shaft: the torque then identifies E0 only)")
+    g.add_argument("--m", type=int, default=8, help="axial film cells (even, default 8)")
+    p.add_argument("--n", type=int, default=None,
+                   help="elements per ring (default 256 roller, 128 pin), film cells round a journal (default 32)")
     p.add_argument("--dma", nargs="+", default=None, metavar="FILE", help="DMA files for the consistency term")
     p.add_argument("--w-dma", type=float, default=0.1, help="weight of the DMA term with --dma (default 0.1)")
     p.add_argument("--rel-scatter", type=float, default=0.05,
@@ -66,7 +78,10 @@ def _model(args):
     if args.scene == "roller":
         return ft.roller_model(args.R_outer, args.R_inner, args.roller_diameter, args.rollers,
                                n=args.n or 256, diametral_clearance=args.diametral_clearance)
-    return ft.pin_model(args.R, args.radial_clearance, n=args.n or 128)
+    if args.scene == "journal":
+        return ft.journal_model(args.R or 0.025, args.radial_clearance or 5e-5, args.length, args.thickness,
+                                args.viscosity or ft.water_viscosity, args.turning, n=args.n or 32, m=args.m)
+    return ft.pin_model(args.R or 0.01, args.radial_clearance or 1e-4, n=args.n or 128)
 
 
 def _check_args(args):
@@ -74,14 +89,19 @@ def _check_args(args):
     for name in ("steps", "polish"):
         if getattr(args, name) < 0:
             return f"--{name} must be >= 0, got {getattr(args, name)}"
-    for name in ("lr", "rel_scatter", "R_outer", "R_inner", "roller_diameter", "R", "radial_clearance"):
+    for name in ("lr", "rel_scatter", "R_outer", "R_inner", "roller_diameter", "R", "radial_clearance", "length",
+                 "thickness", "viscosity"):
         v = getattr(args, name)
+        if v is None:
+            continue
         if not (v > 0 and v < float("inf")):
             return f"--{name.replace('_', '-')} must be a finite number > 0, got {v}"
     if not args.w_dma >= 0:
         return f"--w-dma must be >= 0, got {args.w_dma}"
-    if args.n is not None and args.n < 16:
-        return f"--n must be an integer >= 16, got {args.n}"
+    if args.n is not None and (args.n < 16 or (args.scene == "journal" and args.n % 2)):
+        return f"--n must be an integer >= 16 (even for a journal), got {args.n}"
+    if args.m < 2 or args.m % 2:
+        return f"--m must be an even integer >= 2, got {args.m}"
     if args.rollers < 2:
         return f"--rollers must be >= 2, got {args.rollers}"
     return None
