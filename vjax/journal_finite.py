@@ -76,7 +76,8 @@ solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their c
 coarser grid's solution. Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same
 linear solve). Dynamic coefficients: :func:`stiffness_damping` (rigid bodies),
 :func:`jfo_impedance` (rigid, "jfo": the cavity's fraction has its own dynamics, so K and C
-depend on the whirl frequency), :func:`impedance` (deformable ones; "jfo" with them is refused, not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
+depend on the whirl frequency), :func:`impedance` (deformable ones; "jfo" with them is refused,
+not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
 failure, inside ``jit`` too.
 """
 from __future__ import annotations
@@ -895,21 +896,20 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
 
         (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
 
-    (S the loading pressure's slope: the half-Sommerfeld clip; A_p + i Omega A_pdot with a "jfo"
-    cavity, :func:`jfo_impedance`), Z = -dF/dx; a dense complex solve per whirl frequency
-    (n (m - 1) unknowns)."""
+    (S the loading pressure's slope: the half-Sommerfeld clip), Z = -dF/dx; a dense complex
+    solve per whirl frequency (n (m - 1) unknowns). Not for a "jfo" cavity, whose fraction has
+    its own dynamics (:func:`jfo_impedance`, rigid bodies)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     pz0 = x0[:N]
     f0 = fields(x0, pr, cfg)
     U0, zero, motion0 = f0["uB"] + f0["uJ"], jnp.zeros((n, m + 1), x0.dtype), jnp.zeros(4, x0.dtype)
 
-    def eqs(pz, U, Udot, motion, rate):
-        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot), rate=rate)
+    def eqs(pz, U, Udot, motion):
+        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot))
 
-    J_p, J_U, J_Ud, J_s, J_pd = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3, 4))(
-        pz0, U0, zero, motion0, jnp.zeros_like(pz0))
-    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0, None)[1])(pz0)               # (2, N)
+    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(pz0, U0, zero, motion0)
+    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0)[1])(pz0)                     # (2, N)
     slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
 
     slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
@@ -924,7 +924,7 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
         for body, R_b, omega_b in layers:           # a 3D layer couples the sections: its ends move too
             M3 = whirl_matrix(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
             dA = dA + jnp.einsum("rkj,kjil->ril", GU, M3[:, :, :, 1:-1])
-        A = J_p + 1j * W * J_pd + (dA * slope[None]).reshape(N, N)
+        A = J_p + (dA * slope[None]).reshape(N, N)
         b = J_s[:, :2] + 1j * W * J_s[:, 2:]
         return -G @ jnp.linalg.solve(A, -b)
 
