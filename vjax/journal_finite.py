@@ -279,19 +279,9 @@ def deformations(p_load, pr: Params, z):
     mean = (P[1] @ wz) / pr.L
     P = P.at[1].add((pr.load[0] - 1j * pr.load[1]) / (pr.R * 2 * jnp.pi / n * pr.L) - mean)
 
-    def deform(op):
-        if op is None:
-            return zero
-        if isinstance(op, LandOperator):            # a 3D layer: DCT-I in z as well
-            return op.apply_theta_modes(pr.compliance * P)
-        return jnp.fft.irfft(pr.compliance * op.symbol[:, None] * P, n, axis=0)
+    # slices: each section as the plane ring; a 3D layer: DCT-I in z as well
+    deform = lambda op: zero if op is None else op.apply_theta_modes(pr.compliance * P)    # noqa: E731
     return deform(pr.op_B), deform(pr.op_J)
-
-
-def _first_mode_symbol(op):
-    """The symbol (m/Pa) of theta mode 1 for an axially uniform pressure: the ring operator's,
-    which a 3D layer's z-uniform column equals."""
-    return op.symbol[1, 0] if isinstance(op, LandOperator) else op.symbol[1]
 
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None):
@@ -350,7 +340,7 @@ def _guess(pr: Params, cfg: Config):
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
     # the journal: c eps e^{i a} plus the bodies' rigid displacement under the load's first
     # mode (amplitude |symbol_1| W / (pi R L), along the film's minimum)
-    s1 = pr.compliance * sum(_first_mode_symbol(op) for op in (pr.op_B, pr.op_J) if op is not None)
+    s1 = pr.compliance * sum(op.plane_symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
     moved = c * eps + s1 * pr.W / (jnp.pi * R * L)
     position = jnp.abs(moved) / c * jnp.exp(1j * (a - jnp.angle(moved)))
     n = cfg.n

@@ -42,7 +42,7 @@ import numpy as np
 from . import _checks, green
 from .layer3d import layer_modes
 from .material import Material
-from .operator import effective_compliance, element_symbol, memory_revolutions
+from .operator import effective_compliance, element_symbol, memory_revolutions, whirl_compliance
 
 ALIASES = tuple(range(-4, 5))   # images k + l n of a theta mode that carry the 3D correction
 Z_IMAGES = tuple(range(-4, 5))  # images j + 2 m s of an axial node mode (the hat's aliases), 3D layer
@@ -82,6 +82,12 @@ class LandOperator:
         """The same from the pressure's real FFT in theta ``P`` (n // 2 + 1, m + 1)."""
         U = idct1(self.symbol * dct1(P, axis=1), axis=1)
         return jnp.fft.irfft(U, self.n, axis=0)
+
+    @property
+    def plane_symbol(self):
+        """The symbol (n // 2 + 1,) (m/Pa) for a pressure uniform along the axis: the plane
+        ring's (the DCT's column 0; a z-uniform pressure deforms the layer as the slices do)."""
+        return self.symbol[:, 0]
 
 
 def land_operator(kind: str, material: Material, R, thickness, length, n: int, m: int, omega=0.0,
@@ -150,14 +156,10 @@ def whirl_matrix(kind, material, R, thickness, length, n: int, m: int, omega, wh
     """Dense response (n, m + 1, n, m + 1) (m/Pa, complex) of the 3D layer to a small pressure
     perturbation p(theta, z) e^(i whirl t) on a pattern moving at ``omega`` (rad/s) relative to
     the body: u[a, b] = sum M[a, b, i, l] p[i, l]. Theta mode k (full FFT, signed) responds at its
-    own frequency -k omega + whirl, as :func:`vjax.operator.whirl_symbol` (the Nyquist mode the
-    mean of its two), times the geometry G of :func:`land_operator`; DCT-I in z."""
+    own frequency -k omega + whirl (:func:`vjax.operator.whirl_compliance`), times the geometry G
+    of :func:`land_operator`; DCT-I in z."""
     G = _geometry(kind, material.nu, R, thickness, length, n, m)            # (n/2 + 1, m + 1)
-    k = jnp.fft.fftfreq(n, 1.0 / n)
-    J = material.compliance(-k * omega + whirl)
-    if n % 2 == 0:
-        J = J.at[n // 2].set(0.5 * (material.compliance(-0.5 * n * omega + whirl)
-                                    + material.compliance(0.5 * n * omega + whirl)))
+    J = whirl_compliance(material, n, omega, whirl)
     S = R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]   # (n, m + 1), full FFT order
     unit = jnp.eye(n * (m + 1), dtype=S.dtype).reshape(n * (m + 1), n, m + 1)
     u = jnp.fft.ifft(idct1(S * dct1(jnp.fft.fft(unit, axis=1), axis=2), axis=2), axis=1)   # (i l, a, b)

@@ -113,6 +113,16 @@ class RingOperator:
     def __call__(self, sigma):
         return jnp.fft.irfft(self.symbol * jnp.fft.rfft(sigma, axis=-1), self.n, axis=-1)
 
+    def apply_theta_modes(self, P):
+        """Displacement (n, m + 1) (m) of the axial slices of a finite bearing's land, each as
+        this ring, from their pressures' real FFT in theta ``P`` (n // 2 + 1, m + 1) (rows)."""
+        return jnp.fft.irfft(self.symbol[:, None] * P, self.n, axis=0)
+
+    @property
+    def plane_symbol(self):
+        """The symbol (n // 2 + 1,) (m/Pa) for a pressure uniform along the axis: this one."""
+        return self.symbol
+
     @property
     def kernel(self):
         """First column c: the dense matrix is M[i, j] = c[(i - j) mod n]."""
@@ -187,11 +197,19 @@ def whirl_symbol(kind: str, material: Material, R, n: int, omega, whirl, ref_len
     """
     m = jnp.fft.fftfreq(n, 1.0 / n)
     L = element_symbol(kind, n, R, material.nu, ref_length, thickness)[jnp.abs(m).astype(int)]
+    return R * L * whirl_compliance(material, n, omega, whirl)
+
+
+def whirl_compliance(material: Material, n: int, omega, whirl):
+    """Compliance J*(-m omega + whirl) (1/Pa, complex (n,)) of each full-FFT mode m (``fftfreq``
+    order) of a perturbation at ``whirl`` (rad/s) on a pattern moving at ``omega`` relative to the
+    body; the Nyquist mode takes the mean of its two frequencies (:func:`whirl_symbol`)."""
+    m = jnp.fft.fftfreq(n, 1.0 / n)
     J = material.compliance(-m * omega + whirl)
     if n % 2 == 0:
         J = J.at[n // 2].set(0.5 * (material.compliance(-0.5 * n * omega + whirl)
                                     + material.compliance(0.5 * n * omega + whirl)))
-    return R * L * J
+    return J
 
 
 def circulant(symbol):
