@@ -186,14 +186,20 @@ def test_power_balance_and_outputs():
 
 # ---------------------------------------------------------------- misalignment
 def test_misalignment_moment():
-    """Aligned: zero moment to round-off. Tilted: the moment is odd in the tilt (the mirror
+    """Aligned: zero moment to round-off; the half-width solve of an aligned bearing (tilt
+    None: the unknowns from mid-width to one end, mirrored) is the full-width solve's (a zero
+    tilt given) to round-off. Tilted: the moment is odd in the tilt (the mirror
     image z -> -z), the force even; the moment equals an independent quadrature of the
     pressure field (the scene's quadrature to round-off, Simpson's rule to 1%); small tilts
     give a moment linear in the tilt."""
     W = 0.5 * long_load(0.5) * D
-    s0 = finite(W, 1.0)
+    s0, full = finite(W, 1.0), finite(W, 1.0, tilt=np.zeros(2))
     scale = W * D
-    assert float(jnp.max(jnp.abs(s0.moment))) < 1e-12 * scale
+    for s in (s0, full):
+        assert float(jnp.max(jnp.abs(s.moment))) < 1e-12 * scale
+    assert float(jnp.max(jnp.abs(s0.pressure - full.pressure))) < 1e-12 * float(full.max_pressure)
+    for name in ("eccentricity", "attitude_angle", "torque_shaft", "side_leakage", "power_loss"):
+        assert abs(float(getattr(s0, name)) / float(getattr(full, name)) - 1) < 1e-12, name
     gamma = np.array([0.2, -0.1]) * C / D       # the journal's ends move by 0.2 c and 0.1 c
     sp, sm = finite(W, 1.0, tilt=gamma), finite(W, 1.0, tilt=-gamma)
     assert np.allclose(np.asarray(sp.moment), -np.asarray(sm.moment), rtol=1e-8, atol=1e-12 * scale)

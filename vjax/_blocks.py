@@ -115,15 +115,16 @@ def bordered_solver(blocks, columns, rows, corner):
     g = corner.shape[0]
     N = n * k
     dtype = diag.dtype
-    eye = jnp.eye(N + g, dtype=dtype)
-    first, last = eye[:, :k], eye[:, N - k:N]                  # selectors of the first, last ring
+    # columns of the identity of order N + g (never the whole of it: N^2 entries)
+    unit = lambda start, count: jnp.eye(N + g, count, -start, dtype=dtype)     # noqa: E731
+    first, last = unit(0, k), unit(N - k, k)                    # selectors of the first, last ring
     # T_cyclic = T + first lower[0] last^T + last upper[n-1] first^T
     U = [jnp.pad(lower[0], ((0, N + g - k), (0, 0))),
          jnp.pad(upper[-1], ((N - k, g), (0, 0)))]
     V = [last, first]
     # the border: T_ext has an identity on the g border unknowns
-    U += [jnp.concatenate([columns, corner - jnp.eye(g, dtype=dtype)]), eye[:, N:]]
-    V += [eye[:, N:], jnp.concatenate([rows.T, jnp.zeros((g, g), dtype)])]
+    U += [jnp.concatenate([columns, corner - jnp.eye(g, dtype=dtype)]), unit(N, g)]
+    V += [unit(N, g), jnp.concatenate([rows.T, jnp.zeros((g, g), dtype)])]
     U, V = jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1)
     fac = _factor(lower, diag, upper)
     # the transpose of T: block (i, i-1) is upper[i-1]^T, block (i, i+1) is lower[i+1]^T

@@ -90,12 +90,15 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _blocks, _checks, _film2d, _journal_film, _scene, _solve, reference, reynolds
+from . import _blocks, _checks, _film2d, _journal_film, _krylov, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .layer3d_land import LandOperator, whirl_matrix
 from .operator import RingOperator, circulant, grid, memory_revolutions
 
 GROOVES = ("fixed", "circumferential")
+KRYLOV_MIN_CELLS = 512    # linear_solver="auto": a dense LU with deformable bodies up to this many cells
+KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
+KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -104,14 +107,19 @@ class FiniteJournalOptions:
     theta (even, >= 8), ``m`` axial intervals (even, >= 2: m + 1 nodes, the end ones at ambient
     pressure), axial ``spacing`` "uniform" or "cosine" (nodes clustered at the ends, for long
     bearings whose pressure drops to ambient within about R of the ends), Newton tolerance
-    ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32) and
-    ``max_iter`` Newton steps."""
+    ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32),
+    ``max_iter`` Newton steps and, with deformable bodies, the ``linear_solver`` of each Newton
+    step and of the implicit derivatives: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
+    1) cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
+    block-tridiagonal Jacobian with each node's own compliance: :func:`linear_model`) or "auto"
+    (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: always the exact block solve."""
 
     n: int = 64
     m: int = 16
     spacing: str = "uniform"
     tol: float | None = None
     max_iter: int = 60
+    linear_solver: str = "auto"
 
     def __post_init__(self):
         _checks.option_count("n", self.n, 8)
@@ -122,6 +130,13 @@ class FiniteJournalOptions:
         if self.tol is not None:
             _checks.option_number("tol", self.tol)
         _checks.option_count("max_iter", self.max_iter)
+        _checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
+
+    @property
+    def krylov(self) -> bool:
+        """Whether deformable bodies' Newton steps and derivatives are solved by GMRES."""
+        return self.linear_solver == "krylov" or (self.linear_solver == "auto"
+                                                  and self.n * (self.m - 1) > KRYLOV_MIN_CELLS)
 
 
 @jax.tree_util.register_dataclass
@@ -198,18 +213,39 @@ class Params:
 
 @dataclasses.dataclass(frozen=True)
 class Config:
-    """Static configuration: cavitation model, grid size, Newton's tolerance and step cap (the
-    axial spacing is a parameter, ``Params.s``: uniform and cosine grids share one compile)."""
+    """Static configuration: cavitation model, grid size, Newton's tolerance and step cap, and
+    whether deformable bodies' linear solves are GMRES (the axial spacing is a parameter,
+    ``Params.s``: uniform and cosine grids share one compile)."""
 
     cavitation: str
     n: int
     m: int
     tol: float
     max_iter: int
+    krylov: bool = False
+    half: bool = False    # the steady solve of an aligned bearing: unknowns from mid-width to one end
 
 
 def _unknowns(cfg: Config):
-    return cfg.n * (cfg.m - 1)
+    return cfg.n * _columns(cfg)
+
+
+def _columns(cfg: Config):
+    """Axial columns of the cell unknowns: the m - 1 interior nodes; in a half-width solve
+    (``cfg.half``) the m / 2 from mid-width to the last interior one."""
+    return cfg.m // 2 if cfg.half else cfg.m - 1
+
+
+def _interior(u, cfg: Config):
+    """The flat cell unknowns (n _columns) as values (n, m - 1) at every interior node: a
+    half-width solve's mirrored about mid-width (an aligned bearing's pressure is symmetric)."""
+    u = u.reshape(cfg.n, _columns(cfg))
+    return jnp.concatenate([u[:, :0:-1], u], axis=1) if cfg.half else u
+
+
+def _own_columns(a, cfg: Config):
+    """The unknowns' columns (n, _columns) of an array over the interior nodes (n, m - 1)."""
+    return a[:, cfg.m // 2 - 1:] if cfg.half else a
 
 
 def _rotation(frame):
@@ -218,10 +254,11 @@ def _rotation(frame):
     return jnp.array([[c, -s], [s, c]])
 
 
-def _as_unknowns(scaled, position, pr: Params):
-    """Unknowns [scaled pressure (the universal unknown for "jfo") at the interior nodes, journal
-    centre / c in grid axes] from ``scaled`` (n, m + 1) and an absolute ``position`` (m)."""
-    return jnp.concatenate([scaled[:, 1:-1].ravel(), _rotation(pr.frame).T @ position / pr.c])
+def _as_unknowns(scaled, position, pr: Params, cfg: Config):
+    """Unknowns [scaled pressure (the universal unknown for "jfo") at the interior nodes (those
+    of the unknowns, :func:`_columns`), journal centre / c in grid axes] from ``scaled`` (n, m + 1)
+    and an absolute ``position`` (m)."""
+    return jnp.concatenate([_own_columns(scaled[:, 1:-1], cfg).ravel(), _rotation(pr.frame).T @ position / pr.c])
 
 
 def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
@@ -235,21 +272,14 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     N = _unknowns(cfg)
     theta, _ = grid(n)
     z = 0.5 * pr.L * pr.s
-    pz = x[:N].reshape(n, m - 1)
+    pz = _interior(x[:N], cfg)
     jfo = cfg.cavitation == "jfo"
-    # "jfo": pz is Elrod's universal unknown, the pressure where positive, the liquid film
-    # fraction - 1 where negative (:func:`vjax.reynolds.pressure_and_fraction`)
-    p_scaled, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation, pr.smoothing if jfo else 0.0)
-    p = _film2d.with_ends(p_scaled * pr.p_ref)
-    fraction = 1.0 + _film2d.with_ends(fraction - 1.0)     # the ends: ambient, a full film
+    p, fraction, p_load = _loading(pz, pr, cfg, relaxed)
     e = pr.c * x[N:N + 2]
     hdot = jnp.zeros((n, m + 1), x.dtype)
     if motion is not None:
         e = e + motion[:2]
         hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
-    p_load = reynolds.load_pressure(p, cfg.cavitation)
-    if cfg.cavitation == "reynolds" and relaxed is not False:
-        p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
     if deformation is None:
         uB, uJ = deformations(p_load, pr, z)
     else:
@@ -259,6 +289,22 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     f = _film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None)
     return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
                 fraction=fraction)
+
+
+def _loading(pz, pr: Params, cfg: Config, relaxed=False):
+    """Pressure (n, m + 1) (Pa, all nodes), liquid fraction and loading pressure (the one the
+    bodies and the journal carry: clipped at 0 by half-Sommerfeld, or by ``relaxed`` Reynolds
+    conditions) from the cell unknowns ``pz`` (n, m - 1)."""
+    jfo = cfg.cavitation == "jfo"
+    # "jfo": pz is Elrod's universal unknown, the pressure where positive, the liquid film
+    # fraction - 1 where negative (:func:`vjax.reynolds.pressure_and_fraction`)
+    p_scaled, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation, pr.smoothing if jfo else 0.0)
+    p = _film2d.with_ends(p_scaled * pr.p_ref)
+    fraction = 1.0 + _film2d.with_ends(fraction - 1.0)     # the ends: ambient, a full film
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
+    return p, fraction, p_load
 
 
 def deformations(p_load, pr: Params, z):
@@ -294,7 +340,7 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
     # the film's own growth d(h f)/dt per unit area, f the liquid fraction (1 but in a "jfo" cavity)
     growth = f["hdot"][:, 1:-1] * f["fraction"][:, 1:-1]
     if rate is not None and cfg.cavitation == "jfo":
-        growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, rate.reshape(f["pz"].shape), 0.0)
+        growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, _interior(rate, cfg), 0.0)
     out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * growth
     scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
     r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
@@ -302,7 +348,7 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
         sommerfeld = _film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
         r = jnp.where(relaxed, sommerfeld, r)
     F, _ = _film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
-    return r.ravel(), F, jnp.min(f["h"])
+    return _own_columns(r, cfg).ravel(), F, jnp.min(f["h"])
 
 
 def equations(x, pr: Params, cfg: Config, relaxed=False):
@@ -355,25 +401,55 @@ def _guess(pr: Params, cfg: Config):
     # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
     # zone by one cell per iteration
     p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
-    return jnp.concatenate([p.ravel(), jnp.stack([position.real, position.imag])])
+    return jnp.concatenate([_own_columns(p, cfg).ravel(), jnp.stack([position.real, position.imag])])
+
+
+def own_compliance(pr: Params, cfg: Config):
+    """The bodies' displacement (m/Pa) at a node under a unit pressure on that node alone, mode 1
+    left out (it comes from the load, :func:`deformations`): the diagonal of their compliance
+    (at mid-width; a slice's is the same at every node), for :func:`linear_model`."""
+    n, m = cfg.n, cfg.m
+    P = jnp.ones((n // 2 + 1, m + 1), jnp.result_type(pr.c, 1j)).at[1].set(0.0)
+    P = P * (jnp.arange(m + 1) == m // 2)                  # a unit pressure at (theta_0, z = 0)
+    u = sum(op.apply_theta_modes(P) for op in (pr.op_B, pr.op_J) if op is not None)
+    return pr.compliance * u[0, m // 2]
 
 
 def linear_model(x, pr: Params, cfg: Config, relaxed=False):
-    """``(solve, solve_transpose)`` of the Newton system at x, exact and direct: the cell
-    equations' Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1
-    cells across the width, cyclic), bordered by the two position columns and force rows
-    (:func:`vjax._blocks.bordered_solver`, O(n m^3))."""
+    """``(solve, solve_transpose)`` of the Newton system at x. The cell equations' Jacobian in
+    the pressures, the film's deformation held, is block tridiagonal (a ring of n blocks of
+    m - 1 cells across the width, cyclic), bordered by the two position columns and force rows
+    (:func:`vjax._blocks.bordered_solver`, O(n m^3)): for rigid bodies that is the Jacobian, and
+    the solve is exact and direct. Deformable bodies add G K D (G the cells' derivative in the
+    film, K the bodies' compliance, which couples every node of a slice, D the loading
+    pressure's slope): with ``cfg.krylov`` the system is solved by GMRES, its products
+    matrix-free (one FFT per product, O(N log N)), preconditioned by the block solve of the
+    film's Jacobian with K kept on each node's own entry (:func:`own_compliance`: a thin
+    layer's compliance is mostly that local, Winkler-like part)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
-    cells = lambda pz: cell_residual(jnp.concatenate([pz, x[N:]]), pr, cfg, relaxed=relaxed)[0]
-    blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, m - 1)
-    full = lambda y: equations(y, pr, cfg, relaxed)[0]
+    rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
+    if _rigid(pr):
+        cells = lambda pz: cell_residual(rest(pz), pr, cfg, relaxed=relaxed)[0]     # noqa: E731
+    else:
+        f0 = fields(x, pr, cfg, relaxed=relaxed)
+        U0, load0, own = f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg)
+
+        def cells(pz):
+            U = U0 + own.real * (_loading(_interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
+            return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)))[0]
+    blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, _columns(cfg))
+    full = lambda y: equations(y, pr, cfg, relaxed)[0]     # noqa: E731
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
-    unit = jnp.eye(N + 2, dtype=x.dtype)[N:]
+    unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
     cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
     rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
-    return _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
+    solve, solve_t = _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
+    if _rigid(pr):
+        return solve, solve_t
+    gmres = lambda A, M: lambda b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
+    return gmres(matvec, solve), gmres(lambda v: vjp(v)[0], solve_t)
 
 
 def _rigid(pr: Params):
@@ -387,18 +463,20 @@ STALL_WINDOW = 12
 
 
 def _newton(x0, pr: Params, cfg: Config, relaxed=False):
-    """The core's Newton; each step by the block solve for rigid bodies, by a dense LU of the
-    Jacobian (from jacfwd) with deformable ones, whose compliance couples every cell of an
-    axial slice (n (m - 1) + 2 unknowns: up to a few thousand)."""
+    """The core's Newton; each step by the block solve for rigid bodies; with deformable ones,
+    whose compliance couples every cell of an axial slice, by GMRES (``cfg.krylov``,
+    :func:`linear_model`) or a dense LU of the Jacobian from jacfwd (n (m - 1) + 2 unknowns:
+    up to a few thousand)."""
     def eqs(x, state):
         r, hmin = equations(x, pr, cfg, relaxed)
         return r, state, hmin > 0
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    block_solve = lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)
+    direct = _rigid(pr) or cfg.krylov
+    linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)) if direct else None
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
-                                linear_solve=block_solve if _rigid(pr) else None, stall_window=STALL_WINDOW)
+                                linear_solve=linear_solve, stall_window=STALL_WINDOW)
     return x, stats
 
 
@@ -440,7 +518,7 @@ def _jfo_start(x, pr: Params, cfg: Config):
     flow = jnp.take_along_axis(qx, peak[None, :], axis=0)
     fraction = jnp.clip(flow / (pr.v * f["h"][:, 1:-1]), 0.0, 1.0)
     cavity = p <= 1e-9 * jnp.max(p)
-    return x.at[:N].set(jnp.where(cavity, fraction - 1.0, p / pr.p_ref).ravel())
+    return x.at[:N].set(_own_columns(jnp.where(cavity, fraction - 1.0, p / pr.p_ref), cfg).ravel())
 
 
 def _jfo_steady(pr: Params, cfg: Config):
@@ -472,7 +550,7 @@ def _film_steady(pr: Params, cfg: Config):
     if cfg.cavitation != "reynolds":
         return _newton(x0, pr, cfg)
     N = _unknowns(cfg)
-    held = pr.groove[:, 1:-1].ravel() > 0
+    held = _own_columns(pr.groove[:, 1:-1], cfg).ravel() > 0
 
     def cond(c):
         k, _, _, st = c
@@ -551,7 +629,7 @@ def solve(pr: Params, cfg: Config, start: str = "given") -> tuple[jax.Array, _so
         guess = jax.lax.stop_gradient(_guess(pr, cfg))
         x0 = guess if start == "guess" else jnp.where(jnp.all(jnp.isfinite(pr.x0)), pr.x0, guess)
         pr = dataclasses.replace(pr, x0=x0)
-    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) else None
+    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) or cfg.krylov else None
     return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
                                 block)(pr)
 
@@ -573,8 +651,8 @@ def _nests(options: FiniteJournalOptions) -> bool:
     return options.n * options.m >= NESTED_MIN_CELLS and options.n % 4 == 0 and options.m % 4 == 0
 
 
-@jax.jit
-def _refined(coarse: FiniteJournalResult, pr: Params):
+@partial(jax.jit, static_argnums=(2,))
+def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
     """Unknowns on this grid from a solution on the 2x coarser one (the coarse nodes are the
     even ones here): the new nodes get the mean of their two neighbours, in theta, then in z;
     NaN where the coarse solve failed (then the rigid estimate starts, :func:`solve`)."""
@@ -582,7 +660,7 @@ def _refined(coarse: FiniteJournalResult, pr: Params):
     u = jnp.stack([u, 0.5 * (u + jnp.roll(u, -1, axis=0))], axis=1).reshape(-1, u.shape[1])
     mid = 0.5 * (u[:, :-1] + u[:, 1:])
     u = jnp.concatenate([jnp.stack([u[:, :-1], mid], axis=2).reshape(u.shape[0], -1), u[:, -1:]], axis=1)
-    x0 = _as_unknowns(u, coarse.position, pr)
+    x0 = _as_unknowns(u, coarse.position, pr, cfg)
     return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
 
 
@@ -636,7 +714,9 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
         mask[g] = np.abs(s) <= float(sw) * (1 + 1e-12)
     floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
-    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter)
+    rigid = housing is None and shaft is None
+    cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
+                 krylov=options.krylov and not rigid)
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
                  supply_pressure, mask, float(circumferential), s, housing, shaft, unknowns=_unknowns(cfg),
                  memory=memory)
@@ -686,10 +766,10 @@ def _operator(body, R, shape, length, omega, memory):
     return body.operator(R, shape[0], omega, memory)
 
 
-@jax.jit
-def _start(pressure, position, pr: Params):
+@partial(jax.jit, static_argnums=(3,))
+def _start(pressure, position, pr: Params, cfg: Config):
     """Unknowns from a solution (:func:`_as_unknowns`), as a start that is not differentiated."""
-    return jax.lax.stop_gradient(_as_unknowns(pressure / pr.p_ref, position, pr)).astype(pr.x0.dtype)
+    return jax.lax.stop_gradient(_as_unknowns(pressure / pr.p_ref, position, pr, cfg)).astype(pr.x0.dtype)
 
 
 def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None,
@@ -714,11 +794,15 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
                     supply_width=supply_width, tilt=tilt, temperature=temperature, shift=shift, groove=groove,
                     options=options)
     n, m = options.n, options.m
+    # an aligned bearing's pressure is symmetric about mid-width (the grooves, the bodies and the
+    # axial nodes are): the steady solve keeps the unknowns from mid-width to one end
+    cfg = dataclasses.replace(cfg, half=tilt is None)
+    pr = dataclasses.replace(pr, x0=jnp.zeros(_unknowns(cfg) + 2, pr.x0.dtype))
     start = "guess"
     if initial is not None:
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
             raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
-        pr, start = dataclasses.replace(pr, x0=_start(initial.pressure, initial.position, pr)), "given"
+        pr, start = dataclasses.replace(pr, x0=_start(initial.pressure, initial.position, pr, cfg)), "given"
     elif _nests(options):
         coarse = finite_journal_bearing(
             R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
@@ -726,7 +810,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
             supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
             temperature=temperature, shift=shift, groove=groove, throw=False,
             options=dataclasses.replace(options, n=n // 2, m=m // 2))
-        pr, start = dataclasses.replace(pr, x0=_refined(coarse, pr)), "given_or_guess"
+        pr, start = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg)), "given_or_guess"
     sol = _run(pr, cfg, start)
     _solve.report("journal_bearing (finite length)", sol, throw)
     return sol
@@ -868,7 +952,7 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, initial=N
         raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr)
+    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr, cfg)
     return (steady, *tilt_stiffness_damping(x0, pr, cfg))
 
 
@@ -931,7 +1015,7 @@ def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies=()
     :func:`stiffness_damping` (independent of the whirl); deformable ones (``bodies`` as in
     :func:`impedance`): :func:`impedance`, C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
     # "jfo": the universal unknown, the film fraction - 1 in the cavity
-    x0 = _as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr)
+    x0 = _as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr, cfg)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
     whirl = jnp.zeros(1, x0.dtype) if whirl is None else whirl
