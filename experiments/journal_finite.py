@@ -7,8 +7,9 @@ Run::
 Writes ``journal_finite.txt`` (and prints it): Raimondi and Boyd's table (L/D = 1, 0.5,
 Reynolds conditions) on two grids; Ocvirk's short bearing (load ratio at L/D = 0.05, 0.1,
 0.2 on two axial grids); the long-bearing limit (eccentricity against D/L and its
-extrapolation); warm time and Newton steps of one rigid point for grids from 32 x 8 to
-256 x 64 and of a point with a polymer liner from 32 x 8 to 64 x 16, and the dynamic
+extrapolation); warm time, Newton steps and time per step of one rigid point and of one with
+a polymer liner for grids from 64 x 16 to 1024 x 256, against the exact block solve and the
+dense LU in the same run (the baseline), and the dynamic
 coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machine's load
 average next to them); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
 c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
@@ -36,9 +37,10 @@ RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.26
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
+    import jax
     import numpy as np
     import vjax
-    from vjax import FiniteJournalOptions, JournalOptions, reference
+    from vjax import FiniteJournalOptions, JournalOptions, journal_finite, reference
 
     lines = [f"# finite journal bearing (issue 27); {_common.device_note()}", ""]
     grids = [(48, 16)] if quick else [(48, 16), (96, 32)]
@@ -84,9 +86,16 @@ def main(out_dir="experiments/out", quick=False):
     W = 0.5 * float(reference.long_bearing(0.5, R, C, ETA, V, "reynolds")["load"]) * D
     liner = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
 
-    def timing(n, m, housing):
-        """One point's first call and the median of three warm ones (loads 1-3 % higher)."""
-        opt = FiniteJournalOptions(n=n, m=m)
+    def timing(n, m, housing, baseline=False):
+        """One point's first call and the median of three warm ones (loads 1-3 % higher); the
+        baseline: Newton's linear solves as before the multigrid (the exact block solve for a
+        rigid film, the dense LU with a liner)."""
+        if baseline != timing.baseline:          # the solvers read these when they are traced
+            jax.clear_caches()
+            journal_finite.EXACT_WIDTH = 10**9 if baseline else EXACT_WIDTH
+            timing.baseline = baseline
+        solver = "dense" if baseline else "auto"
+        opt = FiniteJournalOptions(n=n, m=m, linear_solver=solver)
         run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, housing=housing,  # noqa: E731
                                              options=opt)
         t = time.perf_counter()
@@ -99,15 +108,24 @@ def main(out_dir="experiments/out", quick=False):
             s.eccentricity.block_until_ready()
             times.append(time.perf_counter() - t)
         its, med = int(s.iterations), float(np.median(times))
-        return (f"{n}x{m} (N = {n * (m - 1)}): first {first:.1f} s, warm {med:.3f} s, {its} Newton steps, "
-                f"{med / max(its, 1) * 1e3:.1f} ms per step")
+        N = n * m // 2                         # the half width's cell unknowns
+        per_step = med / max(its, 1)
+        return (f"{'baseline ' if baseline else ''}{n}x{m} (N = {N}): first {first:.1f} s, warm {med:.3f} s, "
+                f"{its} Newton steps, {per_step * 1e3:.1f} ms per step, {per_step / (N * np.log2(N)) * 1e9:.0f} ns "
+                f"per N log2 N")
+    timing.baseline = False
+    EXACT_WIDTH = journal_finite.EXACT_WIDTH
 
-    lines += ["", f"Warm time per rigid point (L/D = 1, Reynolds), load average {os.getloadavg()[0]:.1f}:"]
-    lines += [timing(n, m, None) for n, m in ([(32, 8), (64, 16)] if quick else
-                                              [(32, 8), (64, 16), (128, 32), (256, 64)])]
-    lines += ["", f"Warm time with a 2 mm polymer liner (L/D = 1, Reynolds; dense LU of n (m - 1) + 2 unknowns), "
-              f"load average {os.getloadavg()[0]:.1f}:"]
-    lines += [timing(n, m, liner) for n, m in ([(32, 8)] if quick else [(32, 8), (48, 16), (64, 16)])]
+    grids = [(64, 16), (128, 32)] if quick else [(64, 16), (128, 32), (256, 64), (512, 128), (1024, 256)]
+    lines += ["", f"Warm time per point (L/D = 1, Reynolds, the aligned bearing's half width: N = n m / 2 cell "
+              f"unknowns), load average {os.getloadavg()[0]:.1f}. Newton's steps: the exact block solve up to "
+              f"{EXACT_WIDTH} cells across the half width, GMRES with the multigrid V-cycle above; with the liner, "
+              "GMRES preconditioned by the film's block solve (or the V-cycle). Baseline in the same run: the exact "
+              "block solve (rigid), the dense LU (liner)."]
+    lines += ["rigid:"] + [timing(n, m, None) for n, m in grids]
+    lines += [timing(n, m, None, baseline=True) for n, m in grids[:3]]
+    lines += ["2 mm polymer liner:"] + [timing(n, m, liner) for n, m in grids]
+    lines += [timing(n, m, liner, baseline=True) for n, m in [(32, 8), (48, 16), (64, 16)][:2 if quick else 3]]
     lines += ["", "Grid study of K and C (rigid, L/D = 1, Reynolds, groove fixed opposite the load; each 2 x 2 "
               "matrix over its largest entry): the largest change from the grid before"]
     previous = None

@@ -18,34 +18,43 @@ import jax
 import jax.numpy as jnp
 
 
-def neighbourhood_blocks(fn, x, n: int, k: int):
-    """Blocks (lower, diag, upper), each (n, k, k), of the Jacobian of ``fn`` (R^{nk} -> R^{nk})
-    at ``x``, known to couple cell (i, j) only to cells (i + a mod n, j + b), |a|, |b| <= 1:
-    lower[i] = dF_i/dx_{i-1}, diag[i] = dF_i/dx_i, upper[i] = dF_i/dx_{i+1} (block indices mod
-    n). Columns coloured (i mod 3, j mod 3), the last n mod 3 rings with colours of their own so
+def stencil(fn, x, n: int, k: int):
+    """The 9-point stencil C (3, 3, n, k) of the Jacobian of ``fn`` (R^{nk} -> R^{nk}) at ``x``,
+    known to couple cell (i, j) only to cells (i + a mod n, j + b), |a|, |b| <= 1:
+    C[a + 1, b + 1, i, j] = dF_ij / dx_(i + a, j + b) (0 where j + b is outside 0..k - 1).
+    Columns coloured (i mod 3, j mod 3), the last n mod 3 rings with colours of their own so
     that the wrap-around never mixes two columns in one row's neighbourhood."""
     full = n - n % 3
     ci = jnp.concatenate([jnp.arange(full) % 3, 3 + jnp.arange(n - full)])
-    colour = (ci[:, None] * 3 + jnp.arange(k)[None, :] % 3).ravel()          # (n k,)
+    colour = ci[:, None] * 3 + jnp.arange(k)[None, :] % 3                   # (n, k)
     ncol = 3 * (3 + n - full)
-    seeds = (colour[None, :] == jnp.arange(ncol)[:, None]).astype(x.dtype)
+    seeds = (colour.ravel()[None, :] == jnp.arange(ncol)[:, None]).astype(x.dtype)
     _, jvp = jax.linearize(fn, x)
     columns = jax.vmap(jvp)(seeds).reshape(ncol, n, k)       # row (i, j) of each colour's sum
-    colour = colour.reshape(n, k)
     rows_i, rows_j = jnp.arange(n)[:, None], jnp.arange(k)[None, :]
 
-    def block(a):
-        B = jnp.zeros((n, k, k), x.dtype)
-        i2 = (rows_i + a) % n
-        for b in (-1, 0, 1):
-            j2 = rows_j + b
-            ok = (j2 >= 0) & (j2 < k)
-            j2c = jnp.clip(j2, 0, k - 1)
-            entry = jnp.where(ok, columns[colour[i2, j2c], rows_i, rows_j], 0.0)      # (n, k)
-            jj = jnp.arange(k)
-            B = B.at[:, jj, jnp.clip(jj + b, 0, k - 1)].add(jnp.where(ok, entry, 0.0))
-        return B
-    return block(-1), block(0), block(1)
+    def entry(a, b):
+        j2 = rows_j + b
+        ok = (j2 >= 0) & (j2 < k)
+        return jnp.where(ok, columns[colour[(rows_i + a) % n, jnp.clip(j2, 0, k - 1)], rows_i, rows_j], 0.0)
+    return jnp.stack([jnp.stack([entry(a, b) for b in (-1, 0, 1)]) for a in (-1, 0, 1)])
+
+
+def stencil_blocks(C):
+    """Blocks (lower, diag, upper), each (n, k, k), of the 9-point stencil C (:func:`stencil`):
+    lower[i] = dF_i/dx_{i-1}, diag[i] = dF_i/dx_i, upper[i] = dF_i/dx_{i+1} (ring indices mod n),
+    each tridiagonal."""
+    k = C.shape[3]
+    band = lambda c: (jnp.einsum("nj,jl->njl", c[0], jnp.eye(k, k, -1, dtype=C.dtype))     # noqa: E731
+                      + jax.vmap(jnp.diag)(c[1]) + jnp.einsum("nj,jl->njl", c[2], jnp.eye(k, k, 1, dtype=C.dtype)))
+    return band(C[0]), band(C[1]), band(C[2])
+
+
+def neighbourhood_blocks(fn, x, n: int, k: int):
+    """Blocks (lower, diag, upper), each (n, k, k), of the Jacobian of ``fn`` (R^{nk} -> R^{nk})
+    at ``x``, known to couple cell (i, j) only to cells (i + a mod n, j + b), |a|, |b| <= 1
+    (:func:`stencil`, :func:`stencil_blocks`)."""
+    return stencil_blocks(stencil(fn, x, n, k))
 
 
 def _mm(a, b):

@@ -64,20 +64,29 @@ put in, -omega_B torque - omega_J torque_shaft + p_s supply_flow = power_loss - 
 torque_viscoelastic - omega_J torque_viscoelastic_shaft (the power balance of the discrete
 equations, up to the discretization).
 
-Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected),
-each step solved exactly and directly. With deformable bodies by a dense LU of the Jacobian
-(the compliance couples every cell of a slice; up to a few thousand unknowns, O(N^3)); rigid:
-the Jacobian in the pressures is block tridiagonal (a ring of n blocks of m - 1 cells,
-cyclic), bordered by the eccentricity's two columns and the two force rows
-(:func:`linear_model`, :mod:`vjax._blocks`, O(n m^3) per step). Under Reynolds conditions a
-Newton that stalls restarts from the half-Sommerfeld solution; "jfo" starts from the Reynolds
-solution (:func:`_jfo_steady`); soft bodies fall back on continuation in their compliance and the speed
-(:func:`_steady`); cold solves on grids of NESTED_MIN_CELLS cells or more start from the 2x
-coarser grid's solution. Derivatives are implicit (:func:`vjax._solve.implicit_root`, the same
-linear solve). Dynamic coefficients: :func:`stiffness_damping` (rigid bodies),
-:func:`jfo_impedance` (rigid, "jfo": the cavity's fraction has its own dynamics, so K and C
-depend on the whirl frequency), :func:`impedance` (deformable ones; "jfo" with them is refused,
-not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
+Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected).
+An aligned bearing (``tilt`` None) has a pressure symmetric about mid-width: its unknowns are
+the cells from mid-width to one end, mirrored (:func:`_interior`), half the width's; a tilt,
+even a zero one given, solves the whole width. Each Newton step (:func:`linear_model`): the
+cell equations' Jacobian in the pressures, the deformation held, is a 9-point stencil, block
+tridiagonal (a ring of n blocks across the width, cyclic), bordered by the eccentricity's two
+columns and the two force rows. Rigid bodies: that is the Jacobian, solved exactly by a
+block Thomas factorization and Woodbury (:mod:`vjax._blocks`, O(n k^3) for k cells across)
+up to EXACT_WIDTH cells across, above that by GMRES preconditioned by an aggregation
+multigrid V-cycle (:mod:`vjax._multigrid`, O(n k) per application). Deformable bodies
+couple every cell of a slice through their compliance: a dense LU of the Jacobian from
+jacfwd (``linear_solver="dense"``, up to a few thousand unknowns, O(N^3)), or GMRES with
+matrix-free products (one FFT each, O(N log N)) preconditioned as the rigid film with each
+node's own compliance added (``"krylov"``; "auto": from KRYLOV_MIN_CELLS cells). Under
+Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solution; "jfo"
+starts from the Reynolds solution (:func:`_jfo_steady`); soft bodies fall back on
+continuation in their compliance and the speed (:func:`_steady`); cold solves on grids of
+NESTED_MIN_CELLS cells or more start from the 2x coarser grid's solution. Derivatives are
+implicit (:func:`vjax._solve.implicit_root`, the same linear solve and its transpose).
+Dynamic coefficients: :func:`stiffness_damping` (rigid bodies), :func:`jfo_impedance`
+(rigid, "jfo": the cavity's fraction has its own dynamics, so K and C depend on the whirl
+frequency), :func:`impedance` (deformable ones, a dense solve per whirl frequency; "jfo" with
+them is refused, not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
 failure, inside ``jit`` too.
 """
 from __future__ import annotations
@@ -90,7 +99,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _blocks, _checks, _film2d, _journal_film, _krylov, _scene, _solve, reference, reynolds
+from . import _blocks, _checks, _film2d, _journal_film, _krylov, _multigrid, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .layer3d_land import LandOperator, whirl_matrix
 from .operator import RingOperator, circulant, grid, memory_revolutions
@@ -99,6 +108,8 @@ GROOVES = ("fixed", "circumferential")
 KRYLOV_MIN_CELLS = 512    # linear_solver="auto": a dense LU with deformable bodies up to this many cells
 KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
 KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
+EXACT_WIDTH = 32          # Newton's preconditioner: the exact block solve up to this many unknown cells across the
+                          # width (O(n m^3)), a multigrid V-cycle above (O(n m), :mod:`vjax._multigrid`)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -438,15 +449,19 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
         def cells(pz):
             U = U0 + own.real * (_loading(_interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
             return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)))[0]
-    blocks = _blocks.neighbourhood_blocks(cells, x[:N], n, _columns(cfg))
+    C = _blocks.stencil(cells, x[:N], n, _columns(cfg))
     full = lambda y: equations(y, pr, cfg, relaxed)[0]     # noqa: E731
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
     unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
     cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
     rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
-    solve, solve_t = _blocks.bordered_solver(blocks, cols[:N], rows[:, :N], cols[N:])
-    if _rigid(pr):
+    exact = _columns(cfg) <= EXACT_WIDTH
+    if exact:
+        solve, solve_t = _blocks.bordered_solver(_blocks.stencil_blocks(C), cols[:N], rows[:, :N], cols[N:])
+    else:
+        solve, solve_t = _multigrid.bordered(C, 2)
+    if _rigid(pr) and exact:
         return solve, solve_t
     gmres = lambda A, M: lambda b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
     return gmres(matvec, solve), gmres(lambda v: vjp(v)[0], solve_t)
@@ -473,7 +488,7 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False):
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    direct = _rigid(pr) or cfg.krylov
+    direct = _rigid(pr) or cfg.krylov or _columns(cfg) > EXACT_WIDTH
     linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)) if direct else None
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
                                 linear_solve=linear_solve, stall_window=STALL_WINDOW)
@@ -629,7 +644,8 @@ def solve(pr: Params, cfg: Config, start: str = "given") -> tuple[jax.Array, _so
         guess = jax.lax.stop_gradient(_guess(pr, cfg))
         x0 = guess if start == "guess" else jnp.where(jnp.all(jnp.isfinite(pr.x0)), pr.x0, guess)
         pr = dataclasses.replace(pr, x0=x0)
-    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) or cfg.krylov else None
+    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) or cfg.krylov \
+        or _columns(cfg) > EXACT_WIDTH else None
     return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
                                 block)(pr)
 
