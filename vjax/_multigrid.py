@@ -43,10 +43,12 @@ def transpose(C):
 
 
 def _prolong(vc, k: int):
+    """P vc: each coarse cell's value on its 2 x 2 fine cells (k fine cells across)."""
     return jnp.repeat(jnp.repeat(vc, 2, axis=0), 2, axis=1)[:, :k]
 
 
 def _restrict(v):
+    """P^T v: the sums over each 2 x 2 aggregate (the last, when k is odd, 2 x 1)."""
     n, k = v.shape
     v = jnp.pad(v, ((0, 0), (0, k % 2)))
     return v.reshape(n // 2, 2, -1, 2).sum(axis=(1, 3))
