@@ -123,7 +123,8 @@ class FiniteJournalOptions:
     step and of the implicit derivatives: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
     1) cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
     block-tridiagonal Jacobian with each node's own compliance: :func:`linear_model`) or "auto"
-    (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: always the exact block solve."""
+    (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: the exact block solve, or GMRES with a
+    multigrid V-cycle on grids wider than EXACT_WIDTH cells (:func:`linear_model`)."""
 
     n: int = 64
     m: int = 16
@@ -431,12 +432,14 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     the pressures, the film's deformation held, is block tridiagonal (a ring of n blocks of
     m - 1 cells across the width, cyclic), bordered by the two position columns and force rows
     (:func:`vjax._blocks.bordered_solver`, O(n m^3)): for rigid bodies that is the Jacobian, and
-    the solve is exact and direct. Deformable bodies add G K D (G the cells' derivative in the
-    film, K the bodies' compliance, which couples every node of a slice, D the loading
-    pressure's slope): with ``cfg.krylov`` the system is solved by GMRES, its products
-    matrix-free (one FFT per product, O(N log N)), preconditioned by the block solve of the
-    film's Jacobian with K kept on each node's own entry (:func:`own_compliance`: a thin
-    layer's compliance is mostly that local, Winkler-like part)."""
+    the solve is exact and direct up to EXACT_WIDTH unknown cells across; above that, GMRES
+    preconditioned by an aggregation multigrid V-cycle of the same stencil, the two border
+    unknowns left to GMRES (:func:`vjax._multigrid.bordered`, O(n m) per application).
+    Deformable bodies add G K D (G the cells' derivative in the film, K the bodies' compliance,
+    which couples every node of a slice, D the loading pressure's slope): with ``cfg.krylov``
+    the system is solved by GMRES, its products matrix-free (one FFT per product, O(N log N)),
+    preconditioned as above with K kept on each node's own entry of the film's Jacobian
+    (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
