@@ -30,8 +30,8 @@ def test_multigrid_gmres_solves_the_newton_system(monkeypatch):
     - The Newton step of :func:`journal_finite.linear_model` (GMRES with the V-cycle) equals
       the dense LU's to 1e-8.
     - The V-cycle makes GMRES fast, for A and for A^T (the adjoint solve of the implicit
-      derivatives): 20 steps without restart bring the residual below 1e-9 (measured 4e-12
-      and 3e-12), where they leave it above 1e-2 without it."""
+      derivatives): 20 steps without restart bring the residual below 1e-9 (measured 7e-14
+      and 1.3e-13), where they leave it above 1e-2 without it (measured 2.6e-2 and 3.3e-2)."""
     monkeypatch.setattr(journal_finite, "EXACT_WIDTH", 8)
     monkeypatch.setattr(_multigrid, "COARSEST_WIDTH", 4)
     W = 0.5 * float(vjax.reference.long_bearing(0.5, R, C, ETA, 0.5 * WJ * (R - C), "reynolds")["load"]) * D
