@@ -474,6 +474,12 @@ def _rigid(pr: Params):
     return pr.op_B is None and pr.op_J is None
 
 
+def _solved_by_linear_model(pr: Params, cfg: Config):
+    """Whether Newton's steps and the derivatives use :func:`linear_model` (block solve or
+    GMRES), not a dense LU of the AD Jacobian (deformable bodies on small grids)."""
+    return _rigid(pr) or cfg.krylov or _columns(cfg) > EXACT_WIDTH
+
+
 # Newton gives up when its residual has not halved in this many steps: caught on the
 # rupture line's kinks it would otherwise creep for all of max_iter (a lined bearing on 64 x 16:
 # 60 steps at a residual of 0.29) before the half-Sommerfeld restart or the continuation
@@ -491,8 +497,8 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False):
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    direct = _rigid(pr) or cfg.krylov or _columns(cfg) > EXACT_WIDTH
-    linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)) if direct else None
+    linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)) \
+        if _solved_by_linear_model(pr, cfg) else None
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
                                 linear_solve=linear_solve, stall_window=STALL_WINDOW)
     return x, stats
@@ -647,8 +653,7 @@ def solve(pr: Params, cfg: Config, start: str = "given") -> tuple[jax.Array, _so
         guess = jax.lax.stop_gradient(_guess(pr, cfg))
         x0 = guess if start == "guess" else jnp.where(jnp.all(jnp.isfinite(pr.x0)), pr.x0, guess)
         pr = dataclasses.replace(pr, x0=x0)
-    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _rigid(pr) or cfg.krylov \
-        or _columns(cfg) > EXACT_WIDTH else None
+    block = (lambda x, aux, prm: linear_model(x, prm, cfg)) if _solved_by_linear_model(pr, cfg) else None
     return _solve.implicit_root(lambda prm: _steady(prm, cfg), lambda x, aux, prm: equations(x, prm, cfg)[0],
                                 block)(pr)
 
