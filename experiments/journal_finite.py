@@ -11,7 +11,8 @@ extrapolation); warm time, Newton steps and time per step of one rigid point and
 a polymer liner for grids from 64 x 16 to 1024 x 256, against the exact block solve and the
 dense LU in the same run (the baseline), and the dynamic
 coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machine's load
-average next to them); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
+average next to them), and the lined bearing's whirl solves alone from 32 x 8 to 256 x 64
+(matrix-free GMRES against the dense complex LU in the same run); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
 c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 """
 from __future__ import annotations
@@ -38,6 +39,7 @@ RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.26
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
     import jax
+    import jax.numpy as jnp
     import numpy as np
     import vjax
     from vjax import FiniteJournalOptions, JournalOptions, journal_finite, reference
@@ -149,6 +151,32 @@ def main(out_dir="experiments/out", quick=False):
         t = time.perf_counter()
         call().stiffness.block_until_ready()
         lines.append(f"{name}: {time.perf_counter() - t:.3f} s ({first:.1f} s)")
+    lines += ["", "The lined bearing's whirl solves alone (about its converged steady state, 16 frequencies), median "
+              "of 3 warm calls (first call apart): matrix-free GMRES, one solve per frequency and load column, "
+              "against the dense complex LU of the same system (the baseline, the solver before) in the same run"]
+    for n, m in [(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]:
+        kw = dict(omega_shaft=WJ, housing=liner, options=FiniteJournalOptions(n=n, m=m))
+        steady = vjax.journal_bearing(R, C, ETA, W, length=D, **kw)
+        pr, cfg = journal_finite.setup(R, C, ETA, W, D, **kw)
+        bodies = ((liner, R, 0.0), (None, R - C, -WJ))
+        row = f"{n}x{m} (N = {n * (m - 1)}):"
+        for dense in (False, True) if n * (m - 1) <= 1000 else (False,):
+            jax.clear_caches()
+            journal_finite.DENSE_WHIRL_CELLS = 10**9 if dense else 0    # read when traced
+            go = lambda: journal_finite.coefficients(steady, pr, cfg, bodies, jnp.asarray(whirl))  # noqa: E731
+            t = time.perf_counter()
+            out = go()
+            out[1].block_until_ready()
+            first = time.perf_counter() - t
+            times = []
+            for _ in range(3):
+                t = time.perf_counter()
+                go()[1].block_until_ready()
+                times.append(time.perf_counter() - t)
+            residual = "" if dense else f", largest GMRES residual {float(np.max(out[3].residual)):.1e}"
+            row += f" {'dense LU' if dense else 'GMRES'} {np.median(times):.3f} s (first {first:.1f} s){residual};"
+        journal_finite.DENSE_WHIRL_CELLS = 0
+        lines.append(row)
     text = "\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "journal_finite.txt", text + "\n")

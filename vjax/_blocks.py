@@ -159,3 +159,11 @@ def bordered_solver(blocks, columns, rows, corner):
         return y - Zt @ jax.scipy.linalg.lu_solve(lu, U.T @ y, trans=1)
 
     return solve, solve_transpose
+
+
+def ring_solver(blocks):
+    """``(solve, solve_transpose)`` of the cyclic block tridiagonal of ``blocks`` alone
+    (:func:`bordered_solver` with no border)."""
+    N, dtype = blocks[1].shape[0] * blocks[1].shape[1], blocks[1].dtype
+    empty = jnp.zeros((N, 0), dtype)
+    return bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), dtype))

@@ -286,9 +286,8 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     With ``length=L`` (m; and optionally ``tilt``, ``supply_width``): the finite bearing of
     :mod:`vjax.journal_finite`, its groove fixed in the bearing; K (N/m) and C (N s/m) are the
     bearing's totals, the 2D film linearized in the journal's position and velocity, and the
-    bodies' slices by their whirl operators (:func:`vjax.journal_finite.impedance`); rigid
-    bodies give K and C independent of the whirl frequency
-    (:func:`vjax.journal_finite.stiffness_damping`).
+    bodies by their whirl operators (:func:`vjax.journal_finite.impedance`); rigid bodies
+    give K and C independent of the whirl frequency (but for the "jfo" cavity's own dynamics).
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> co = journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 100.0], omega_shaft=100.0,

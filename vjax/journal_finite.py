@@ -34,7 +34,7 @@ sleeve made with ``axial="3d"`` is instead the bonded layer in 3D elasticity ove
 its ends sliding on rigid shoulders at z = +-L/2 (:mod:`vjax.layer3d_land`: the pressure
 piecewise linear in z, FFT in theta and DCT-I in z; uniform axial spacing; in the dynamic
 coefficients by its whirl response,
-:func:`vjax.layer3d_land.whirl_matrix`).
+:func:`vjax.layer3d_land.whirl_symbol`).
 
 Load control: the pressure force of the film on the journal balances ``load`` (N, the
 external force on the journal, total for the bearing); the unknowns are the scaled pressures
@@ -83,11 +83,12 @@ starts from the Reynolds solution (:func:`_jfo_steady`); soft bodies fall back o
 continuation in their compliance and the speed (:func:`_steady`); cold solves on grids of
 NESTED_MIN_CELLS cells or more start from the 2x coarser grid's solution. Derivatives are
 implicit (:func:`vjax._solve.implicit_root`, the same linear solve and its transpose).
-Dynamic coefficients: :func:`stiffness_damping` (rigid bodies), :func:`jfo_impedance`
-(rigid, "jfo": the cavity's fraction has its own dynamics, so K and C depend on the whirl
-frequency), :func:`impedance` (deformable ones, a dense solve per whirl frequency; "jfo" with
-them is refused, not yet checked). ``throw=True`` raises :class:`~vjax.ConvergenceError` on
-failure, inside ``jit`` too.
+Dynamic coefficients: :func:`impedance`, the cell equations linearized in the pressures and
+the journal's position (and tilt) and their rates, with the bodies by their whirl operators
+and a "jfo" cavity's fraction by its own dynamics; matrix-free, one GMRES solve per whirl
+frequency and load column, preconditioned as Newton's steps (rigid bodies on grids up to
+EXACT_WIDTH cells across: the exact block solve alone). ``throw=True`` raises
+:class:`~vjax.ConvergenceError` on failure, inside ``jit`` too.
 """
 from __future__ import annotations
 
@@ -101,13 +102,16 @@ import numpy as np
 
 from . import _blocks, _checks, _film2d, _journal_film, _krylov, _multigrid, _scene, _solve, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
-from .layer3d_land import LandOperator, whirl_matrix
-from .operator import RingOperator, circulant, grid, memory_revolutions
+from .layer3d_land import LandOperator, dct1, idct1
+from .layer3d_land import whirl_symbol as land_whirl_symbol
+from .operator import RingOperator, grid, memory_revolutions
 
 GROOVES = ("fixed", "circumferential")
 KRYLOV_MIN_CELLS = 512    # linear_solver="auto": a dense LU with deformable bodies up to this many cells
 KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
 KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
+KRYLOV_ACCEPT = 1e-6      # the dynamic coefficients' GMRES solves fail above this relative residual (float32: 1e-3)
+DENSE_WHIRL_CELLS = 0     # impedance: a dense LU up to this many cells (0: never; the benchmark's baseline)
 EXACT_WIDTH = 32          # Newton's preconditioner: the exact block solve up to this many unknown cells across the
                           # width (O(n m^3)), a multigrid V-cycle above (O(n m), :mod:`vjax._multigrid`)
 
@@ -440,7 +444,7 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     the system is solved by GMRES, its products matrix-free (one FFT per product, O(N log N)),
     preconditioned as above with K kept on each node's own entry of the film's Jacobian
     (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part)."""
-    n, m = cfg.n, cfg.m
+    n = cfg.n
     N = _unknowns(cfg)
     rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
     if _rigid(pr):
@@ -459,15 +463,23 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
     cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
     rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
-    exact = _columns(cfg) <= EXACT_WIDTH
-    if exact:
-        solve, solve_t = _blocks.bordered_solver(_blocks.stencil_blocks(C), cols[:N], rows[:, :N], cols[N:])
-    else:
-        solve, solve_t = _multigrid.bordered(C, 2)
-    if _rigid(pr) and exact:
+    solve, solve_t = _stencil_solver(C, (cols[:N], rows[:, :N], cols[N:]))
+    if _rigid(pr) and _columns(cfg) <= EXACT_WIDTH:
         return solve, solve_t
     gmres = lambda A, M: lambda b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
     return gmres(matvec, solve), gmres(lambda v: vjp(v)[0], solve_t)
+
+
+def _stencil_solver(C, border=None):
+    """``(solve, solve_transpose)`` of the film's 9-point stencil C (3, 3, n, k), bordered by
+    ``border`` = (columns (n k, g), rows (g, n k), corner (g, g)) if given: up to EXACT_WIDTH
+    cells across the exact block solve (:func:`vjax._blocks.bordered_solver`), above that the
+    multigrid V-cycle, the border left to GMRES (:func:`vjax._multigrid.bordered`: then a
+    preconditioner, not a solve)."""
+    if C.shape[3] > EXACT_WIDTH:
+        return _multigrid.bordered(C, 0 if border is None else border[2].shape[0])
+    blocks = _blocks.stencil_blocks(C)
+    return _blocks.ring_solver(blocks) if border is None else _blocks.bordered_solver(blocks, *border)
 
 
 def _rigid(pr: Params):
@@ -867,210 +879,182 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
 def _pressure_solver(cells, pz, cfg: Config):
     """Solve with the rigid film's Jacobian d cells / d pz at pz (the pressures alone, the
     position held: block tridiagonal, :mod:`vjax._blocks`)."""
-    blocks = _blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1)
-    empty = jnp.zeros((pz.shape[0], 0), pz.dtype)
-    return _blocks.bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), pz.dtype))[0]
+    return _blocks.ring_solver(_blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1))[0]
 
 
-def _response(cells, loads, pz, q0, cfg: Config):
-    """-d loads / d q of the rigid film whose pressures stay in balance, ``cells(pz, q) = 0``,
-    at (pz, q0): with A = d cells/d pz, B = d cells/d q, G = d loads/d pz, dpz = -A^-1 B dq and
-    the response is G A^-1 B (loads (k,), q (j,): (k, j))."""
-    solve = _pressure_solver(lambda p: cells(p, q0), pz, cfg)
-    B = jax.jacfwd(lambda q: cells(pz, q))(q0)
-    G = jax.jacrev(loads)(pz)
-    return G @ jax.vmap(solve, in_axes=1, out_axes=1)(B)
+def _whirl_response(pr: Params, cfg: Config, bodies, W):
+    """The bodies' displacement (n, m + 1) (m, complex: u_B + u_J, each opening the film) under a
+    small loading pressure dp (n, m + 1) (Pa) e^(i W t) on the pattern fixed in space; ``bodies``
+    as in :func:`impedance`. Each theta mode k (full FFT) responds at its own frequency -k omega +
+    W: an axial slice as its plane ring (:meth:`vjax.Body.whirl_symbol`), a 3D layer with its
+    sections coupled through the DCT-I in z (:func:`vjax.layer3d_land.whirl_symbol`): O(N log N)."""
+    n, m = cfg.n, cfg.m
+    slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
+    layers = [b for b in bodies if b[0] is not None and b[0].axial == "3d"]
+    S = sum(body.whirl_symbol(R_b, n, omega_b, W) for body, R_b, omega_b in slices)
+    S3 = sum(land_whirl_symbol(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
+             for body, R_b, omega_b in layers)
+
+    def response(dp):
+        P = jnp.fft.fft(dp, axis=0)
+        U = (S[:, None] * P if slices else 0.0) + (idct1(S3 * dct1(P, axis=1), axis=1) if layers else 0.0)
+        return pr.compliance * jnp.fft.ifft(U, axis=0)
+    return response
 
 
-@partial(jax.jit, static_argnums=(2,))
-def stiffness_damping(x0, pr: Params, cfg: Config):
-    """K and C (N/m, N s/m; absolute axes) of the rigid finite film about the steady unknowns
-    x0: the cell equations linearized (Fischer-Burmeister as is: a cavitated cell stays at
-    p = 0, a pressurized one conserves mass with the squeeze term R dtheta dz dh/dt) in the
-    pressures and the journal's motion (dX, dY, dX/dt, dY/dt), which changes the film by
-    -(dX cos theta + dY sin theta) and its rate likewise (the groove is fixed in the bearing,
-    the grid fixed in space). dp = -A^-1 B d(motion), dF = G dp:
-    K = G A^-1 B[:, :2], C = G A^-1 B[:, 2:] (dF = -(K dx + C dx/dt)); independent of the whirl
-    frequency for a rigid film. A from the block solver; differentiable through x0."""
-    N = _unknowns(cfg)
-    cells = lambda pz, mo: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, mo)[0]
-    force = lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1]
-    KC = _response(cells, force, x0[:N], jnp.zeros(4, x0.dtype), cfg)    # (2, 4) = -dF/d(motion)
-    rot = _rotation(pr.frame)
-    return rot @ KC[:, :2] @ rot.T, rot @ KC[:, 2:] @ rot.T
+@partial(jax.jit, static_argnums=(2, 5))
+def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
+    """Z(Omega) = K + i Omega C (complex, absolute axes) of the finite bearing about the steady
+    unknowns x0 (whole width) at the whirl frequencies ``whirl`` (k,) (rad/s), and the
+    :class:`~vjax._solve.Stats` of its linear solves. Z is (k, 2, 2) (N/m) in the journal's
+    position; with ``tilt`` (k, 4, 4) in its position and tilt q = (X, Y, gamma_x, gamma_y) for
+    the film's force and moment (F_x, F_y, M_x, M_y): blocks in N/m, N/rad, N m/m, N m/rad; the
+    forces conjugate to q are (F_x, F_y, M_y, -M_x) (gamma_x turns the journal about y, gamma_y
+    about -x). ``bodies``: ((body or None, radius, speed of the pattern relative to it), ...) for
+    the housing and the shaft.
 
+    The grid is fixed in space (the groove fixed in the bearing): a journal motion changes the
+    film by -(dX + z dgamma_x) cos theta - (dY + z dgamma_y) sin theta and adds its rate to
+    dh/dt. The bodies respond to the perturbed loading pressure by their whirl operator
+    (:func:`_whirl_response`: each theta mode at its own frequency), which adds to the film and,
+    times i Omega, to its rate; in a "jfo" cavity the liquid fraction has its own dynamics, h
+    df/dt (so K and C depend on Omega even for rigid bodies: the cavity carries its liquid to
+    where the film re-forms with a delay). With dU = M(Omega) S dp:
 
-@partial(jax.jit, static_argnums=(2,))
-def jfo_impedance(x0, pr: Params, cfg: Config, whirl):
-    """Z(Omega) = K + i Omega C (complex (k, 2, 2), N/m; absolute axes) of the rigid finite film
-    with the mass-conserving ("jfo") cavity about the steady unknowns x0, at the whirl
-    frequencies ``whirl`` (k,) (rad/s). In a cavity the liquid fraction f has its own dynamics:
-    the cell's mass balance gains h df/dt besides f dh/dt, so the linearized system is
+        (A_p + i Omega A_f + (A_U + i Omega A_Udot) M(Omega) S) dp = -(B_q + i Omega B_qdot) dq,
+        dQ = G dp,   Z = -dQ/dq
 
-        (A_p + i Omega A_pdot) dp = -(B_x + i Omega B_v) dx,   dF = G dp,   Z = -dF/dx
-
-    with A_pdot diagonal (R dtheta dz h in the cavity cells, 0 elsewhere): K and C depend on
-    Omega even for rigid bodies (the cavity carries its liquid to where the film re-forms with
-    a delay). One block-tridiagonal complex solve per frequency (:mod:`vjax._blocks`)."""
+    (S the loading pressure's slope: the half-Sommerfeld clip; A_f diagonal, R dtheta dz h in
+    a "jfo" cavity's cells, 0 elsewhere). The products are matrix-free (one FFT each), the
+    solves GMRES per whirl frequency and load column, preconditioned by the film's stencil with
+    each node's own whirl compliance on its diagonal (as :func:`linear_model`: the exact block
+    solve up to EXACT_WIDTH cells across, exact for rigid bodies; the multigrid V-cycle above).
+    Rigid bodies up to EXACT_WIDTH cells across: that block solve alone, exact. A relative
+    residual above KRYLOV_ACCEPT is reported as a failure (``stats``)."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
-    pz0, still, no_rate = x0[:N], jnp.zeros(4, x0.dtype), jnp.zeros(N, x0.dtype)
-    cells = lambda pz, motion, rate: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion,  # noqa: E731
-                                                   rate=rate)[0]
-    lower, diag, upper = _blocks.neighbourhood_blocks(lambda pz: cells(pz, still, no_rate), pz0, n, m - 1)
-    # d cells / d rate is diagonal (a cell's own fraction): one forward derivative gives it
-    A_pdot = jax.jvp(lambda r: cells(pz0, still, r), (no_rate,), (jnp.ones_like(no_rate),))[1].reshape(n, m - 1)
-    B = jax.jacfwd(lambda motion: cells(pz0, motion, no_rate))(still)                       # (N, 4)
-    G = jax.jacrev(lambda pz: cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg)[1])(pz0)  # (2, N)
-    empty = jnp.zeros((N, 0), complex)
-
-    def one(W):
-        shifted = diag + 1j * W * jax.vmap(jnp.diag)(A_pdot)
-        solve = _blocks.bordered_solver((lower.astype(complex), shifted, upper.astype(complex)), empty, empty.T,
-                                        jnp.zeros((0, 0), complex))[0]
-        return G @ jax.vmap(solve, in_axes=1, out_axes=1)(B[:, :2] + 1j * W * B[:, 2:])    # -dF/dx
-
-    rot = _rotation(pr.frame)
-    return jnp.einsum("ij,wjk,lk->wil", rot, jax.vmap(one)(whirl), rot)
-
-
-@partial(jax.jit, static_argnums=(2,))
-def tilt_stiffness_damping(x0, pr: Params, cfg: Config):
-    """4 x 4 stiffness and damping of the rigid finite film about the steady unknowns x0, in the
-    journal's position and tilt q = (X, Y, gamma_x, gamma_y) for its force and moment
-    Q = (F_x, F_y, M_x, M_y) (absolute axes; m, rad; N, N m): dQ = -(K dq + C dq/dt), so K has
-    blocks in N/m, N/rad, N m/m, N m/rad (C likewise per second). A tilt dgamma moves the
-    journal centre at axial position z by z dgamma: the film changes by
-    -(dX + z dgamma_x) cos theta - (dY + z dgamma_y) sin theta and its rate likewise; the
-    linearization is :func:`stiffness_damping`'s, whose K and C are the force-position block.
-    The forces conjugate to (X, Y, gamma_x, gamma_y) are (F_x, F_y, M_y, -M_x) (gamma_x turns
-    the journal about y, gamma_y about -x): in that order C is symmetric (reciprocity)."""
-    if not _rigid(pr):
-        raise ValueError("tilt coefficients: rigid bodies only (housing=None, shaft=None)")
-    N, n, m = _unknowns(cfg), cfg.n, cfg.m
+    pz0 = x0[:N]
     theta, _ = grid(n)
     z = 0.5 * pr.L * pr.s
-    zero = jnp.zeros(8, x0.dtype)
+    f0 = fields(x0, pr, cfg)
+    U0, zero, no_rate = f0["uB"] + f0["uJ"], jnp.zeros((n, m + 1), x0.dtype), jnp.zeros(N, x0.dtype)
+    k = 4 if tilt else 2
+    q0 = jnp.zeros(2 * k, x0.dtype)         # (dX, dY[, dgamma_x, dgamma_y]) and their rates
+    rigid = all(body is None for body, _, _ in bodies)
+    direct = rigid and m - 1 <= EXACT_WIDTH
 
-    def cells(pz, q):          # q = (dX, dY, dgamma_x, dgamma_y, and their rates)
-        rate = -q[6] * z[None, :] * jnp.cos(theta)[:, None] - q[7] * z[None, :] * jnp.sin(theta)[:, None]
-        return cell_residual(jnp.concatenate([pz, x0[N:]]), dataclasses.replace(pr, tilt=pr.tilt + q[2:4]), cfg,
-                             jnp.stack([q[0], q[1], q[4], q[5]]),
-                             deformation=(jnp.zeros((n, m + 1), x0.dtype), rate))[0]
+    def cells(pz, U, Udot, rate, q):
+        p = pr
+        if tilt:                            # the tilt moves the journal centre at z by z dgamma
+            p = dataclasses.replace(pr, tilt=pr.tilt + q[2:4])
+            Udot = Udot - z[None, :] * (q[6] * jnp.cos(theta)[:, None] + q[7] * jnp.sin(theta)[:, None])
+        motion = jnp.stack([q[0], q[1], q[k], q[k + 1]])
+        return cell_residual(jnp.concatenate([pz, x0[N:]]), p, cfg, motion, deformation=(U, Udot), rate=rate)[0]
 
-    def loads(pz):
-        f = fields(jnp.concatenate([pz, x0[N:]]), pr, cfg)
-        return jnp.concatenate(_film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R))
+    def loads(pz):                          # the film's force (and moment) on the journal
+        p_load = _loading(_interior(pz, cfg), pr, cfg)[2]
+        return jnp.concatenate(_film2d.resultants(p_load, theta, z, pr.R))[:k]
 
-    KC = _response(cells, loads, x0[:N], zero, cfg)                    # (4, 8) = -dQ/d(q, dq/dt)
-    rot = jnp.kron(jnp.eye(2, dtype=x0.dtype), _rotation(pr.frame))
-    return rot @ KC[:, :4] @ rot.T, rot @ KC[:, 4:] @ rot.T
+    _, film = jax.linearize(lambda pz, U, Udot, rate: cells(pz, U, Udot, rate, q0), pz0, U0, zero, no_rate)
+    B = jax.jacfwd(lambda q: cells(pz0, U0, zero, no_rate, q))(q0)                    # (N, 2 k)
+    G = jax.jacrev(loads)(pz0)                                                         # (k, N)
+    slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
+    loading = lambda v: _film2d.with_ends(slope * v.reshape(n, m - 1))                 # noqa: E731
+    # the film's stencils: in the pressures, in the cavity's rate, and through each node's own
+    # loading in U and dU/dt
+    stencil = lambda fn: _blocks.stencil(fn, no_rate, n, m - 1)                        # noqa: E731
+    C_p, C_f = stencil(lambda v: film(v, zero, zero, 0 * v)), stencil(lambda v: film(0 * v, zero, zero, v))
+    if not rigid:
+        C_U = stencil(lambda v: film(0 * v, loading(v), zero, 0 * v))
+        C_Ud = stencil(lambda v: film(0 * v, zero, loading(v), 0 * v))
+    unit = jnp.zeros((n, m + 1), x0.dtype).at[0, m // 2].set(1.0)
+
+    def one(W):
+        response = None if rigid else _whirl_response(pr, cfg, bodies, W)
+
+        def matvec(v):                  # the complex system's product: the real linear map on Re and Im
+            dU = jnp.zeros((n, m + 1), v.dtype) if rigid else response(loading(v))
+            ri = lambda a: jnp.stack([a.real, a.imag])     # noqa: E731
+            parts = jax.vmap(film)(ri(v), ri(dU), ri(1j * W * dU), ri(1j * W * v))
+            return parts[0] + 1j * parts[1]
+
+        b = (B[:, :k] + 1j * W * B[:, k:]).T                                               # (k, N)
+        if N <= DENSE_WHIRL_CELLS:      # the matrix from N products and its LU
+            return G @ jnp.linalg.solve(jax.vmap(matvec)(jnp.eye(N, dtype=b.dtype)).T, b.T), jnp.zeros(())
+        C = C_p + 1j * W * C_f
+        if direct:                      # the stencil is the whole matrix: its exact block solve
+            dp = jax.vmap(_stencil_solver(C)[0])(b)
+            residual = jnp.linalg.norm(b - jax.vmap(matvec)(dp)) / jnp.linalg.norm(b)
+            return G @ dp.T, residual
+        if not rigid:
+            C = C + response(unit)[0, m // 2] * (C_U + 1j * W * C_Ud)
+        # the preconditioner does not change the solution: no derivatives through its factors
+        precondition = _stencil_solver(jax.lax.stop_gradient(C))[0]
+        dp, residual = jax.vmap(lambda r: _krylov.gmres(matvec, r, precondition, KRYLOV_TOL, KRYLOV_MAX_ITER))(b)
+        return G @ dp.T, jnp.max(residual)
+
+    Z, residual = jax.vmap(one)(whirl)
+    accept = KRYLOV_ACCEPT if x0.dtype == jnp.float64 else 1e-3
+    stats = _solve.Stats(jnp.ones(whirl.shape, jnp.int32), residual,
+                         jnp.where(residual <= accept, _solve.SUCCESS, _solve.INNER_FAILED))
+    rot = jnp.kron(jnp.eye(k // 2, dtype=x0.dtype), _rotation(pr.frame))
+    return jnp.einsum("ij,wjk,lk->wil", rot, Z, rot), stats
 
 
-def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, initial=None, throw=True, **kw):
-    """Steady :class:`FiniteJournalResult` of a rigid finite bearing and its 4 x 4 stiffness and
-    damping in the journal's position and tilt (:func:`tilt_stiffness_damping`; absolute
-    axes), for a rotor model that carries the journal's angular motion (a misaligned or
-    short, stiff bearing). ``kw``: the keyword arguments of :func:`finite_journal_bearing`."""
+def _bodies(R, radial_clearance, kw):
+    """``impedance``'s bodies for the keyword arguments ``kw`` of :func:`finite_journal_bearing`:
+    the pressure pattern is fixed in space, so it moves at -omega relative to each body."""
+    housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),
+                               kw.get("shift"))
+    return ((housing, R, -kw.get("omega_housing", 0.0)), (shaft, R - radial_clearance, -kw.get("omega_shaft", 0.0)))
+
+
+def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, whirl=None, initial=None, throw=True, **kw):
+    """Steady :class:`FiniteJournalResult` and the 4 x 4 stiffness and damping in the journal's
+    position and tilt (:func:`impedance` with ``tilt``; absolute axes), for a rotor model that
+    carries the journal's angular motion (a misaligned or short, stiff bearing): dQ = -(K dq +
+    C dq/dt) for q = (X, Y, gamma_x, gamma_y), Q = (F_x, F_y, M_x, M_y). ``whirl`` None: K and C
+    (4, 4) at rest (rigid bodies: at every whirl frequency); an array (k,) (rad/s): (k, 4, 4),
+    deformable bodies' at their own frequencies. ``kw``: the keyword arguments of
+    :func:`finite_journal_bearing`."""
     if kw.get("cavitation", "reynolds") in ("half_sommerfeld", "jfo"):
         raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    x0 = _as_unknowns(steady.pressure / pr.p_ref, steady.position, pr, cfg)
-    return (steady, *tilt_stiffness_damping(x0, pr, cfg))
+    at = jnp.zeros(1, pr.c.dtype) if whirl is None else jnp.atleast_1d(jnp.asarray(whirl, pr.c.dtype))
+    _, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), at, tilt=True)
+    _solve.report("tilt_coefficients (the finite bearing's whirl solves)", stats, throw)
+    return (steady, K[0], C[0]) if whirl is None else (steady, K, C)
 
 
-@partial(jax.jit, static_argnums=(2,))
-def impedance(x0, pr: Params, cfg: Config, bodies, whirl):
-    """Z(Omega) = K + i Omega C (complex (k, 2, 2), N/m, absolute axes) of the finite bearing
-    with deformable bodies about the steady unknowns x0, for whirl frequencies ``whirl`` (k,)
-    (rad/s). ``bodies``: ((body or None, radius, speed of the pattern relative to it), ...) for
-    the housing and the shaft. The grid is fixed in space (the groove fixed in the bearing): a
-    journal motion changes the film by -(dX cos theta + dY sin theta) and adds its rate to
-    dh/dt; each axial slice's bodies respond to the perturbed loading pressure by their whirl
-    operator (:meth:`vjax.Body.whirl_symbol`: mode m at -m omega + Omega, the plane ring's; a 3D
-    layer by :func:`vjax.layer3d_land.whirl_matrix`, which couples the sections), which adds to
-    the film and, times i Omega, to its rate. With dU = M(Omega) S dp:
-
-        (A_p + (A_U + i Omega A_Udot) M(Omega) S) dp = -(b_x + i Omega b_v) dx,   dF = G dp
-
-    (S the loading pressure's slope: the half-Sommerfeld clip), Z = -dF/dx; a dense complex
-    solve per whirl frequency (n (m - 1) unknowns). Not for a "jfo" cavity, whose fraction has
-    its own dynamics (:func:`jfo_impedance`, rigid bodies)."""
-    n, m = cfg.n, cfg.m
-    N = _unknowns(cfg)
-    pz0 = x0[:N]
-    f0 = fields(x0, pr, cfg)
-    U0, zero, motion0 = f0["uB"] + f0["uJ"], jnp.zeros((n, m + 1), x0.dtype), jnp.zeros(4, x0.dtype)
-
-    def eqs(pz, U, Udot, motion):
-        return cell_residual(jnp.concatenate([pz, x0[N:]]), pr, cfg, motion, deformation=(U, Udot))
-
-    J_p, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3))(pz0, U0, zero, motion0)
-    G = jax.jacfwd(lambda pz: eqs(pz, U0, zero, motion0)[1])(pz0)                     # (2, N)
-    slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
-
-    slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
-    layers = [b for b in bodies if b[0] is not None and b[0].axial == "3d"]
-
-    def one(W):
-        GU = J_U + 1j * W * J_Ud                    # (N, n, m + 1): the film's sensitivity to U at every node
-        dA = jnp.zeros((N, n, m - 1), GU.dtype)
-        if slices:                                  # each axial section by its plane ring's whirl operator;
-            M = sum(circulant(body.whirl_symbol(R_b, n, omega_b, W)) for body, R_b, omega_b in slices)
-            dA = dA + jnp.einsum("rkj,ki->rij", GU[:, :, 1:-1], M)   # the end sections, at ambient pressure, stay
-        for body, R_b, omega_b in layers:           # a 3D layer couples the sections: its ends move too
-            M3 = whirl_matrix(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
-            dA = dA + jnp.einsum("rkj,kjil->ril", GU, M3[:, :, :, 1:-1])
-        A = J_p + (dA * slope[None]).reshape(N, N)
-        b = J_s[:, :2] + 1j * W * J_s[:, 2:]
-        return -G @ jnp.linalg.solve(A, -b)
-
-    Z = jax.vmap(one)(whirl)
-    rot = _rotation(pr.frame)
-    return jnp.einsum("ij,wjk,lk->wil", rot, Z, rot)
-
-
-def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies=(), whirl=None):
-    """(Z, K, C) (complex N/m, N/m, N s/m; (k, 2, 2), absolute axes) at the whirl frequencies
+def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
+    """(Z, K, C, stats) (complex N/m, N/m, N s/m; (k, 2, 2), or (k, 4, 4) with ``tilt``; absolute
+    axes; the :class:`~vjax._solve.Stats` of :func:`impedance`'s solves) at the whirl frequencies
     ``whirl`` (k,) about a converged :class:`FiniteJournalResult` of the bearing ``pr``, ``cfg``
-    (the steady solve of the same arguments); its pressure recovered for the half-Sommerfeld
-    film (whose result holds the clipped pressure) by one more solve. Rigid bodies:
-    :func:`stiffness_damping` (independent of the whirl); deformable ones (``bodies`` as in
-    :func:`impedance`): :func:`impedance`, C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
+    (the steady solve of the same arguments; ``bodies`` as in :func:`impedance`); its pressure
+    recovered for the half-Sommerfeld film (whose result holds the clipped pressure) by one more
+    solve. C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
     # "jfo": the universal unknown, the film fraction - 1 in the cavity
     x0 = _as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr, cfg)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
-    whirl = jnp.zeros(1, x0.dtype) if whirl is None else whirl
-    if _rigid(pr) and cfg.cavitation != "jfo":
-        K, C = stiffness_damping(x0, pr, cfg)
-        K, C = (jnp.broadcast_to(a, whirl.shape + (2, 2)) for a in (K, C))
-        return K + 1j * whirl[:, None, None] * C, K, C
-    response = (lambda w: jfo_impedance(x0, pr, cfg, w)) if _rigid(pr) else (  # noqa: E731
-        lambda w: impedance(x0, pr, cfg, bodies, w))
-    Z, dZ = jax.jvp(response, (whirl,), (jnp.ones_like(whirl),))
+    Z, dZ, stats = jax.jvp(lambda w: impedance(x0, pr, cfg, bodies, w, tilt), (whirl,), (jnp.ones_like(whirl),),
+                           has_aux=True)
     at_rest = (whirl == 0)[:, None, None]
     C = jnp.where(at_rest, dZ.imag, Z.imag / jnp.where(at_rest, 1.0, whirl[:, None, None]))
-    return Z, Z.real, C
+    return Z, Z.real, C, stats
 
 
 def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, initial=None, throw=True, **kw):
     """Steady :class:`FiniteJournalResult` and its (Z, K, C) (complex N/m, N/m, N s/m; (k, 2, 2),
     absolute axes) at the whirl frequencies ``whirl`` (k,) for
     ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
-    :func:`finite_journal_bearing` (rigid bodies: K, C independent of the whirl)."""
-    if kw.get("cavitation") == "jfo" and (kw.get("housing") is not None or kw.get("shaft") is not None):
-        raise ValueError("cavitation='jfo': the dynamic coefficients of a finite bearing with the mass-conserving "
-                         "cavity are built for rigid bodies only (housing=None, shaft=None); use 'reynolds'")
+    :func:`finite_journal_bearing` (rigid bodies and no "jfo" cavity: K, C independent of the whirl)."""
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    housing, shaft = bodies_at(R, radial_clearance, kw.get("housing"), kw.get("shaft"), kw.get("temperature"),
-                               kw.get("shift"))
-    # the pressure pattern is fixed in space: it moves at -omega relative to each body
-    bodies = ((housing, R, -kw.get("omega_housing", 0.0)),
-              (shaft, R - radial_clearance, -kw.get("omega_shaft", 0.0)))
-    return (steady, *coefficients(steady, pr, cfg, bodies, whirl))
+    Z, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), whirl)
+    _solve.report("journal_coefficients (the finite bearing's whirl solves)", stats, throw)
+    return steady, Z, K, C
 
 
 @partial(jax.jit, static_argnums=(2,))

@@ -152,15 +152,14 @@ def _geometry(kind, nu, R, thickness, length, n, m):
     return element_symbol(kind, n, R, nu, thickness=thickness)[:, None] + correction
 
 
-def whirl_matrix(kind, material, R, thickness, length, n: int, m: int, omega, whirl):
-    """Dense response (n, m + 1, n, m + 1) (m/Pa, complex) of the 3D layer to a small pressure
+def whirl_symbol(kind, material, R, thickness, length, n: int, m: int, omega, whirl):
+    """Symbol (n, m + 1) (m/Pa, complex) of the 3D layer's response to a small pressure
     perturbation p(theta, z) e^(i whirl t) on a pattern moving at ``omega`` (rad/s) relative to
-    the body: u[a, b] = sum M[a, b, i, l] p[i, l]. Theta mode k (full FFT, signed) responds at its
-    own frequency -k omega + whirl (:func:`vjax.operator.whirl_compliance`), times the geometry G
-    of :func:`land_operator`; DCT-I in z."""
+    the body, on the full FFT in theta (``fftfreq`` order) and the DCT-I in z:
+    u = ifft(idct1(S dct1(fft(p)))). Theta mode k (signed) responds at its own frequency
+    -k omega + whirl (:func:`vjax.operator.whirl_compliance`), times the geometry G of
+    :func:`land_operator`."""
     G = _geometry(kind, material.nu, R, thickness, length, n, m)            # (n/2 + 1, m + 1)
     J = whirl_compliance(material, n, omega, whirl)
-    S = R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]   # (n, m + 1), full FFT order
-    unit = jnp.eye(n * (m + 1), dtype=S.dtype).reshape(n * (m + 1), n, m + 1)
-    u = jnp.fft.ifft(idct1(S * dct1(jnp.fft.fft(unit, axis=1), axis=2), axis=2), axis=1)   # (i l, a, b)
-    return jnp.moveaxis(u.reshape(n, m + 1, n, m + 1), (0, 1), (2, 3))
+    return R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]
+
