@@ -165,15 +165,15 @@ def main(out_dir="experiments/out", quick=False):
             journal_finite.DENSE_WHIRL_CELLS = 10**9 if dense else 0    # read when traced
             go = lambda: journal_finite.coefficients(steady, pr, cfg, bodies, jnp.asarray(whirl))  # noqa: E731
             t = time.perf_counter()
-            out = go()
-            out[1].block_until_ready()
+            result = go()
+            result[1].block_until_ready()
             first = time.perf_counter() - t
             times = []
             for _ in range(3):
                 t = time.perf_counter()
                 go()[1].block_until_ready()
                 times.append(time.perf_counter() - t)
-            residual = "" if dense else f", largest GMRES residual {float(np.max(out[3].residual)):.1e}"
+            residual = "" if dense else f", largest GMRES residual {float(np.max(result[3].residual)):.1e}"
             row += f" {'dense LU' if dense else 'GMRES'} {np.median(times):.3f} s (first {first:.1f} s){residual};"
         journal_finite.DENSE_WHIRL_CELLS = 0
         lines.append(row)
