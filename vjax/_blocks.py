@@ -110,15 +110,16 @@ def _solve(factors, lower, B):
     return Xs
 
 
-def bordered_solver(blocks, columns, rows, corner):
-    """``(solve, solve_transpose)`` for the (n k + g) square matrix
+def bordered_solver(blocks, columns, rows, corner, transposed: bool = False):
+    """``b -> J^-1 b`` (``transposed``: ``J^-T b``) for the (n k + g) square matrix
 
         J = [[T_cyclic, columns], [rows, corner]]
 
     with T_cyclic the cyclic block tridiagonal of ``blocks`` = (lower, diag, upper) (n, k, k),
     ``columns`` (n k, g), ``rows`` (g, n k), ``corner`` (g, g): the corners of the ring and the
     border as a rank 2k + 2g correction of the non-cyclic T (plus an identity for the border
-    unknowns), solved by Woodbury."""
+    unknowns), solved by Woodbury. Factored when called: a program that solves only with J
+    (Newton's loop) neither traces nor compiles the factors of J^T."""
     lower, diag, upper = blocks
     n, k, _ = diag.shape
     g = corner.shape[0]
@@ -135,35 +136,29 @@ def bordered_solver(blocks, columns, rows, corner):
     U += [jnp.concatenate([columns, corner - jnp.eye(g, dtype=dtype)]), unit(N, g)]
     V += [unit(N, g), jnp.concatenate([rows.T, jnp.zeros((g, g), dtype)])]
     U, V = jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1)
+    if transposed:      # J^T = T^T + V U^T; block (i, i-1) of T^T is upper[i-1]^T, (i, i+1) lower[i+1]^T
+        tr = lambda A: jnp.swapaxes(A, 1, 2)     # noqa: E731
+        lower, diag, upper = jnp.roll(tr(upper), 1, axis=0), tr(diag), jnp.roll(tr(lower), -1, axis=0)
+        U, V = V, U
     fac = _factor(lower, diag, upper)
-    # the transpose of T: block (i, i-1) is upper[i-1]^T, block (i, i+1) is lower[i+1]^T
-    tr = lambda A: jnp.swapaxes(A, 1, 2)
-    lower_t, upper_t = jnp.roll(tr(upper), 1, axis=0), jnp.roll(tr(lower), -1, axis=0)
-    fac_t = _factor(lower_t, tr(diag), upper_t)
 
-    def T_solve(factors, low, B):         # T_ext^-1 B, B (N + g, r)
+    def T_solve(B):         # T_ext^-1 B, B (N + g, r)
         r = B.shape[1]
-        top = _solve(factors, low, B[:N].reshape(n, k, r)).reshape(N, r)
+        top = _solve(fac, lower, B[:N].reshape(n, k, r)).reshape(N, r)
         return jnp.concatenate([top, B[N:]])
 
-    Z = T_solve(fac, lower, U)
+    Z = T_solve(U)
     lu = jax.scipy.linalg.lu_factor(jnp.eye(U.shape[1], dtype=dtype) + V.T @ Z)
-    Zt = T_solve(fac_t, lower_t, V)
 
     def solve(b):
-        y = T_solve(fac, lower, b[:, None])[:, 0]
+        y = T_solve(b[:, None])[:, 0]
         return y - Z @ jax.scipy.linalg.lu_solve(lu, V.T @ y)
-
-    def solve_transpose(b):
-        y = T_solve(fac_t, lower_t, b[:, None])[:, 0]
-        return y - Zt @ jax.scipy.linalg.lu_solve(lu, U.T @ y, trans=1)
-
-    return solve, solve_transpose
+    return solve
 
 
-def ring_solver(blocks):
-    """``(solve, solve_transpose)`` of the cyclic block tridiagonal of ``blocks`` alone
+def ring_solver(blocks, transposed: bool = False):
+    """``b -> T^-1 b`` (or ``T^-T b``) for the cyclic block tridiagonal T of ``blocks`` alone
     (:func:`bordered_solver` with no border)."""
     N, dtype = blocks[1].shape[0] * blocks[1].shape[1], blocks[1].dtype
     empty = jnp.zeros((N, 0), dtype)
-    return bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), dtype))
+    return bordered_solver(blocks, empty, empty.T, jnp.zeros((0, 0), dtype), transposed)

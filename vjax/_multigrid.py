@@ -108,7 +108,7 @@ def hierarchy(C):
 
 def v_cycle(levels):
     """b (n, k) -> the V-cycle's approximation of A^-1 b, A the finest stencil of ``levels``."""
-    exact = _blocks.ring_solver(_blocks.stencil_blocks(levels[-1]))[0]
+    exact = _blocks.ring_solver(_blocks.stencil_blocks(levels[-1]))
 
     def cycle(level, b):
         if level == len(levels) - 1:
@@ -123,13 +123,12 @@ def v_cycle(levels):
     return lambda b: cycle(0, b)
 
 
-def bordered(C, g: int):
-    """``(solve, solve_transpose)``: the V-cycle on the first n k unknowns, the identity on the
-    last g (a matrix bordered by g columns and rows differs from the block diagonal of its
-    stencil and an identity by rank 2 g at most: GMRES converges in at most 2 g more steps)."""
+def bordered(C, g: int, transposed: bool = False):
+    """``b -> `` the V-cycle on the first n k unknowns (of A, or ``transposed``: of A^T: the
+    cycle of the transposed stencils), the identity on the last g (a matrix bordered by g
+    columns and rows differs from the block diagonal of its stencil and an identity by rank 2 g
+    at most: GMRES converges in at most 2 g more steps)."""
     _, _, n, k = C.shape
     N = n * k
-
-    def make(cycle):
-        return lambda b: jnp.concatenate([cycle(b[:N].reshape(n, k)).ravel(), b[N:]])
-    return make(v_cycle(hierarchy(C))), make(v_cycle(hierarchy(transpose(C))))
+    cycle = v_cycle(hierarchy(transpose(C) if transposed else C))
+    return lambda b: jnp.concatenate([cycle(b[:N].reshape(n, k)).ravel(), b[N:]])

@@ -463,23 +463,27 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
     cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
     rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
-    solve, solve_t = _stencil_solver(C, (cols[:N], rows[:, :N], cols[N:]))
+    border = (cols[:N], rows[:, :N], cols[N:])
+    # J^T's factors are made where its solve is called (the derivatives), not in Newton's loop
+    transposed = lambda: _stencil_solver(C, border, transposed=True)     # noqa: E731
     if _rigid(pr) and _columns(cfg) <= EXACT_WIDTH:
-        return solve, solve_t
-    gmres = lambda A, M: lambda b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
-    return gmres(matvec, solve), gmres(lambda v: vjp(v)[0], solve_t)
+        return _stencil_solver(C, border), lambda b: transposed()(b)
+    gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
+    solve = _stencil_solver(C, border)
+    return (lambda b: gmres(matvec, solve, b)), (lambda b: gmres(lambda v: vjp(v)[0], transposed(), b))
 
 
-def _stencil_solver(C, border=None):
-    """``(solve, solve_transpose)`` of the film's 9-point stencil C (3, 3, n, k), bordered by
-    ``border`` = (columns (n k, g), rows (g, n k), corner (g, g)) if given: up to EXACT_WIDTH
-    cells across the exact block solve (:func:`vjax._blocks.bordered_solver`), above that the
-    multigrid V-cycle, the border left to GMRES (:func:`vjax._multigrid.bordered`: then a
-    preconditioner, not a solve)."""
+def _stencil_solver(C, border=None, transposed=False):
+    """``b -> A^-1 b`` (``transposed``: ``A^-T b``) for the film's 9-point stencil C (3, 3, n,
+    k), bordered by ``border`` = (columns (n k, g), rows (g, n k), corner (g, g)) if given: up
+    to EXACT_WIDTH cells across the exact block solve (:func:`vjax._blocks.bordered_solver`),
+    above that the multigrid V-cycle, the border left to GMRES (:func:`vjax._multigrid.bordered`:
+    then a preconditioner, not a solve). Factored when called."""
     if C.shape[3] > EXACT_WIDTH:
-        return _multigrid.bordered(C, 0 if border is None else border[2].shape[0])
+        return _multigrid.bordered(C, 0 if border is None else border[2].shape[0], transposed)
     blocks = _blocks.stencil_blocks(C)
-    return _blocks.ring_solver(blocks) if border is None else _blocks.bordered_solver(blocks, *border)
+    return _blocks.ring_solver(blocks, transposed) if border is None else _blocks.bordered_solver(
+        blocks, *border, transposed)
 
 
 def _rigid(pr: Params):
@@ -879,7 +883,7 @@ def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, hous
 def _pressure_solver(cells, pz, cfg: Config):
     """Solve with the rigid film's Jacobian d cells / d pz at pz (the pressures alone, the
     position held: block tridiagonal, :mod:`vjax._blocks`)."""
-    return _blocks.ring_solver(_blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1))[0]
+    return _blocks.ring_solver(_blocks.neighbourhood_blocks(cells, pz, cfg.n, cfg.m - 1))
 
 
 def _whirl_response(pr: Params, cfg: Config, bodies, W):
@@ -983,13 +987,13 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
             return G @ jnp.linalg.solve(jax.vmap(matvec)(jnp.eye(N, dtype=b.dtype)).T, b.T), jnp.zeros(())
         C = C_p + 1j * W * C_f
         if direct:                      # the stencil is the whole matrix: its exact block solve
-            dp = jax.vmap(_stencil_solver(C)[0])(b)
+            dp = jax.vmap(_stencil_solver(C))(b)
             residual = jnp.linalg.norm(b - jax.vmap(matvec)(dp)) / jnp.linalg.norm(b)
             return G @ dp.T, residual
         if not rigid:
             C = C + response(unit)[0, m // 2] * (C_U + 1j * W * C_Ud)
         # the preconditioner does not change the solution: no derivatives through its factors
-        precondition = _stencil_solver(jax.lax.stop_gradient(C))[0]
+        precondition = _stencil_solver(jax.lax.stop_gradient(C))
         dp, residual = jax.vmap(lambda r: _krylov.gmres(matvec, r, precondition, KRYLOV_TOL, KRYLOV_MAX_ITER))(b)
         return G @ dp.T, jnp.max(residual)
 
