@@ -124,10 +124,10 @@ def v_cycle(levels):
 
 
 def bordered(C, g: int, transposed: bool = False):
-    """``b -> `` the V-cycle on the first n k unknowns (of A, or ``transposed``: of A^T: the
-    cycle of the transposed stencils), the identity on the last g (a matrix bordered by g
-    columns and rows differs from the block diagonal of its stencil and an identity by rank 2 g
-    at most: GMRES converges in at most 2 g more steps)."""
+    """The preconditioner ``b -> M b``: the V-cycle of A (``transposed``: of A^T, the cycle of
+    the transposed stencils) on the first n k unknowns, the identity on the last g (a matrix
+    bordered by g columns and rows differs from the block diagonal of its stencil and an
+    identity by rank 2 g at most: GMRES converges in at most 2 g more steps)."""
     _, _, n, k = C.shape
     N = n * k
     cycle = v_cycle(hierarchy(transpose(C) if transposed else C))

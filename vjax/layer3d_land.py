@@ -162,4 +162,3 @@ def whirl_symbol(kind, material, R, thickness, length, n: int, m: int, omega, wh
     G = _geometry(kind, material.nu, R, thickness, length, n, m)            # (n/2 + 1, m + 1)
     J = whirl_compliance(material, n, omega, whirl)
     return R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]
-
