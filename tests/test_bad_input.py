@@ -182,6 +182,10 @@ CASES = [
     ("journal-stages-zero", lambda: vjax.JournalOptions(stages=0), r"stages must be an integer >= 1"),
     ("journal-max_iter-zero", lambda: vjax.JournalOptions(max_iter=0), r"max_iter must be an integer >= 1"),
     ("journal-options", lambda: _journal(options=vjax.PinOptions()), r"options must be a vjax.JournalOptions"),
+    ("tilt-coefficients-whirl-shape", lambda: vjax.journal_finite.tilt_coefficients(
+        0.05, 5e-5, 0.01, 100.0, 0.1, whirl=[[1.0]], omega_shaft=100.0), r"whirl must be a number or a 1-D array"),
+    ("tilt-coefficients-whirl-nan", lambda: vjax.journal_finite.tilt_coefficients(
+        0.05, 5e-5, 0.01, 100.0, 0.1, whirl=[NAN], omega_shaft=100.0), r"whirl must be finite"),
     # ---- roller bearing
     ("roller-too-many-rollers", lambda: _roller(n_rollers=40), r"n_rollers=40 rollers .* do not fit"),
     ("roller-clearance-below-minus-D", lambda: _roller(diametral_clearance=-3e-3), r"diametral_clearance must exceed -roller_diameter"),

@@ -1023,9 +1023,12 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, whirl=Non
     :func:`finite_journal_bearing`."""
     if kw.get("cavitation", "reynolds") in ("half_sommerfeld", "jfo"):
         raise ValueError(f"cavitation={kw['cavitation']!r}: the tilt coefficients take 'reynolds' or 'sommerfeld'")
+    at = jnp.atleast_1d(jnp.asarray(0.0 if whirl is None else whirl, jnp.result_type(float)))
+    if at.ndim != 1:
+        raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {at.shape}")
+    _checks.finite("whirl", at)
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    at = jnp.zeros(1, pr.c.dtype) if whirl is None else jnp.atleast_1d(jnp.asarray(whirl, pr.c.dtype))
     _, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), at, tilt=True)
     _solve.report("tilt_coefficients (the finite bearing's whirl solves)", stats, throw)
     return (steady, K[0], C[0]) if whirl is None else (steady, K, C)
