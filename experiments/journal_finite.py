@@ -38,6 +38,8 @@ RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.26
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
+    import dataclasses
+
     import jax
     import jax.numpy as jnp
     import numpy as np
@@ -161,9 +163,8 @@ def main(out_dir="experiments/out", quick=False):
         bodies = ((liner, R, 0.0), (None, R - C, -WJ))
         row = f"{n}x{m} (N = {n * (m - 1)}):"
         for dense in (False, True) if n * (m - 1) <= 1000 else (False,):
-            jax.clear_caches()
-            journal_finite.DENSE_WHIRL_CELLS = 10**9 if dense else 0    # read when traced
-            go = lambda: journal_finite.coefficients(steady, pr, cfg, bodies, jnp.asarray(whirl))  # noqa: E731
+            go = lambda: journal_finite.coefficients(  # noqa: E731
+                steady, pr, dataclasses.replace(cfg, krylov=not dense), bodies, jnp.asarray(whirl))
             t = time.perf_counter()
             result = go()
             result[1].block_until_ready()
@@ -175,7 +176,6 @@ def main(out_dir="experiments/out", quick=False):
                 times.append(time.perf_counter() - t)
             residual = "" if dense else f", largest GMRES residual {float(np.max(result[3].residual)):.1e}"
             row += f" {'dense LU' if dense else 'GMRES'} {np.median(times):.3f} s (first {first:.1f} s){residual};"
-        journal_finite.DENSE_WHIRL_CELLS = 0
         lines.append(row)
     text = "\n".join(lines)
     print(text)

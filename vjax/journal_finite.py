@@ -111,7 +111,6 @@ KRYLOV_MIN_CELLS = 512    # linear_solver="auto": a dense LU with deformable bod
 KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
 KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
 KRYLOV_ACCEPT = 1e-6      # the dynamic coefficients' GMRES solves fail above this relative residual (float32: 1e-3)
-DENSE_WHIRL_CELLS = 0     # impedance: a dense LU up to this many cells (0: never; the benchmark's baseline)
 EXACT_WIDTH = 32          # Newton's preconditioner: the exact block solve up to this many unknown cells across the
                           # width (O(n m^3)), a multigrid V-cycle above (O(n m), :mod:`vjax._multigrid`)
 
@@ -124,7 +123,7 @@ class FiniteJournalOptions:
     bearings whose pressure drops to ambient within about R of the ends), Newton tolerance
     ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32),
     ``max_iter`` Newton steps and, with deformable bodies, the ``linear_solver`` of each Newton
-    step and of the implicit derivatives: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
+    step, of the implicit derivatives and of the dynamic coefficients' whirl solves: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
     1) cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
     block-tridiagonal Jacobian with each node's own compliance: :func:`linear_model`) or "auto"
     (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: the exact block solve, or GMRES with a
@@ -929,12 +928,15 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
         dQ = G dp,   Z = -dQ/dq
 
     (S the loading pressure's slope: the half-Sommerfeld clip; A_f diagonal, R dtheta dz h in
-    a "jfo" cavity's cells, 0 elsewhere). The products are matrix-free (one FFT each), the
-    solves GMRES per whirl frequency and load column, preconditioned by the film's stencil with
-    each node's own whirl compliance on its diagonal (as :func:`linear_model`: the exact block
-    solve up to EXACT_WIDTH cells across, exact for rigid bodies; the multigrid V-cycle above).
-    Rigid bodies up to EXACT_WIDTH cells across: that block solve alone, exact. A relative
-    residual above KRYLOV_ACCEPT is reported as a failure (``stats``)."""
+    a "jfo" cavity's cells, 0 elsewhere). The products are matrix-free (one FFT each). With
+    deformable bodies and ``cfg.krylov`` (``FiniteJournalOptions.linear_solver``, as Newton's
+    steps) the solves are GMRES, one per whirl frequency and load column, preconditioned by the
+    film's stencil with each node's own whirl compliance on its diagonal (as
+    :func:`linear_model`: the exact block solve up to EXACT_WIDTH cells across, the multigrid
+    V-cycle above); a relative residual above KRYLOV_ACCEPT is reported as a failure
+    (``stats``). Otherwise a dense complex LU of the matrix from N products (small grids).
+    Rigid bodies: the block solve alone, exact, up to EXACT_WIDTH cells across; GMRES with the
+    V-cycle above."""
     n, m = cfg.n, cfg.m
     N = _unknowns(cfg)
     pz0 = x0[:N]
@@ -983,7 +985,7 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
             return parts[0] + 1j * parts[1]
 
         b = (B[:, :k] + 1j * W * B[:, k:]).T                                               # (k, N)
-        if N <= DENSE_WHIRL_CELLS:      # the matrix from N products and its LU
+        if not (rigid or cfg.krylov):   # the matrix from N products and its LU (small grids)
             return G @ jnp.linalg.solve(jax.vmap(matvec)(jnp.eye(N, dtype=b.dtype)).T, b.T), jnp.zeros(())
         C = C_p + 1j * W * C_f
         if direct:                      # the stencil is the whole matrix: its exact block solve
