@@ -463,12 +463,12 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
     rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
     border = (cols[:N], rows[:, :N], cols[N:])
+    solve = _stencil_solver(C, border)
     # J^T's factors are made where its solve is called (the derivatives), not in Newton's loop
     transposed = lambda: _stencil_solver(C, border, transposed=True)     # noqa: E731
     if _rigid(pr) and _columns(cfg) <= EXACT_WIDTH:
-        return _stencil_solver(C, border), lambda b: transposed()(b)
+        return solve, lambda b: transposed()(b)
     gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
-    solve = _stencil_solver(C, border)
     return (lambda b: gmres(matvec, solve, b)), (lambda b: gmres(lambda v: vjp(v)[0], transposed(), b))
 
 
@@ -966,13 +966,14 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
     G = jax.jacrev(loads)(pz0)                                                         # (k, N)
     slope = reynolds.load_slope(pz0, cfg.cavitation).reshape(n, m - 1) * pr.p_ref
     loading = lambda v: _film2d.with_ends(slope * v.reshape(n, m - 1))                 # noqa: E731
-    # the film's stencils: in the pressures, in the cavity's rate, and through each node's own
-    # loading in U and dU/dt
-    stencil = lambda fn: _blocks.stencil(fn, no_rate, n, m - 1)                        # noqa: E731
-    C_p, C_f = stencil(lambda v: film(v, zero, zero, 0 * v)), stencil(lambda v: film(0 * v, zero, zero, v))
-    if not rigid:
-        C_U = stencil(lambda v: film(0 * v, loading(v), zero, 0 * v))
-        C_Ud = stencil(lambda v: film(0 * v, zero, loading(v), 0 * v))
+    dense = not (rigid or cfg.krylov)       # the matrix from N products and its LU (small grids)
+    if not dense:   # the film's stencils: in the pressures, in the cavity's rate, and through each
+        # node's own loading in U and dU/dt (the preconditioner's)
+        stencil = lambda fn: _blocks.stencil(fn, no_rate, n, m - 1)                    # noqa: E731
+        C_p, C_f = stencil(lambda v: film(v, zero, zero, 0 * v)), stencil(lambda v: film(0 * v, zero, zero, v))
+        if not rigid:
+            C_U = stencil(lambda v: film(0 * v, loading(v), zero, 0 * v))
+            C_Ud = stencil(lambda v: film(0 * v, zero, loading(v), 0 * v))
     unit = jnp.zeros((n, m + 1), x0.dtype).at[0, m // 2].set(1.0)
 
     def one(W):
@@ -985,7 +986,7 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
             return parts[0] + 1j * parts[1]
 
         b = (B[:, :k] + 1j * W * B[:, k:]).T                                               # (k, N)
-        if not (rigid or cfg.krylov):   # the matrix from N products and its LU (small grids)
+        if dense:
             return G @ jnp.linalg.solve(jax.vmap(matvec)(jnp.eye(N, dtype=b.dtype)).T, b.T), jnp.zeros(())
         C = C_p + 1j * W * C_f
         if direct:                      # the stencil is the whole matrix: its exact block solve
