@@ -14,10 +14,19 @@ coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machin
 average next to them), and the lined bearing's whirl solves alone from 32 x 8 to 256 x 64
 (matrix-free GMRES against the dense complex LU in the same run); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
 c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
+
+ROSS: if the environment variable ``VJAX_ROSS_PYTHON`` names a Python interpreter with ROSS 3.x
+(``ross-rotordynamics``; it needs Python >= 3.13, so a side venv), the rigid point of the timings
+is also solved by ROSS's ``PlainJournal`` in that interpreter, a separate process
+(``experiments/ross_peer.py``), on vjax's largest rigid grid and on ROSS's default grid (40 x 20):
+its first and warm times (without its import) and its eccentricity and attitude next to vjax's.
+Unset, or if that run fails, the text says ROSS was not timed and why.
 """
 from __future__ import annotations
 
+import json
 import os
+import subprocess
 import sys
 import time
 
@@ -34,6 +43,38 @@ RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.26
                        (0.6, 0.121, 50.58, 3.22, 4.33, 0.680, 0.415), (0.8, 0.0446, 36.24, 1.70, 4.62, 0.842, 0.313)],
                  0.5: [(0.2, 2.03, 74.94, 40.9, 3.72, 0.318, 0.506), (0.4, 0.779, 61.45, 17.0, 4.29, 0.552, 0.441),
                        (0.6, 0.319, 48.14, 8.10, 4.85, 0.730, 0.365), (0.8, 0.0923, 33.31, 3.26, 5.41, 0.874, 0.267)]}
+
+
+def ross_lines(load, eccentricity, attitude_deg, grid, ross_grids=((256, 64), (40, 20)), timeout=900):
+    """Lines on ROSS's PlainJournal for the rigid point (``experiments/ross_peer.py`` run by
+    ``$VJAX_ROSS_PYTHON``, one process per grid in ``ross_grids``) next to vjax's ``eccentricity``
+    and ``attitude_deg`` on ``grid``, or a line saying why ROSS was not timed. Never raises."""
+    python = os.environ.get("VJAX_ROSS_PYTHON")
+    if not python:
+        return ["ROSS was not timed: VJAX_ROSS_PYTHON is not set (see the module docstring)."]
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ross_peer.py")
+    head, lines = [], []
+    for n, m in ross_grids:
+        try:
+            cmd = [python, script, "--load", repr(load), "--groove", "opposite-load", "--n-theta", str(n),
+                   "--n-z", str(m)]
+            run = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+            if run.returncode:
+                raise RuntimeError(f"exit status {run.returncode}: {(run.stderr.strip().splitlines() or [''])[-1]}")
+            r = json.loads(run.stdout.strip().splitlines()[-1])
+        except Exception as e:  # the benchmark goes on without ROSS
+            lines.append(f"ROSS {n}x{m} was not timed: {python} experiments/ross_peer.py failed: {e}")
+            continue
+        head = [f"ROSS {r['ross_version']} PlainJournal, the same rigid point (load {load:.1f} N), in a separate "
+                f"process (Python {r['python']}; its times include no import, its first is its process's first "
+                "solve); one 359-degree land, its groove opposite the load as vjax's, given load / (1 - 1/ny^2) "
+                "for its cross-film integration:"]
+        lines.append(f"ROSS {r['n_theta']}x{r['n_z']} (ny {r['ny']}): first {r['wall_first_s']:.2f} s, warm "
+                     f"{r['wall_median_s']:.3f} s (median of 3); eccentricity {r['eccentricity']:.5f} "
+                     f"(vjax {grid[0]}x{grid[1]}: {eccentricity:.5f}), attitude {r['attitude_deg']:.2f} deg "
+                     f"(vjax {attitude_deg:.2f})"
+                     + ("" if r["mesh_ok"] else f"; h_min/ny {r['hmin_over_ny_um']:.2f} um < 1 um: ROSS unreliable"))
+    return head + lines
 
 
 def main(out_dir="experiments/out", quick=False):
@@ -94,10 +135,7 @@ def main(out_dir="experiments/out", quick=False):
         """One point's first call and the median of three warm ones (loads 1-3 % higher); the
         baseline: the solver before the half width and the multigrid (the whole width, a zero
         tilt given; the exact block solve for a rigid film, the dense LU with a liner)."""
-        if baseline != timing.baseline:          # the solvers read these when they are traced
-            jax.clear_caches()
-            journal_finite.EXACT_WIDTH = 10**9 if baseline else EXACT_WIDTH
-            timing.baseline = baseline
+        solver_setting(baseline)
         solver = "dense" if baseline else "auto"
         opt = FiniteJournalOptions(n=n, m=m, linear_solver=solver)
         run = lambda w: vjax.journal_bearing(R, C, ETA, w, omega_shaft=WJ, length=D, housing=housing,  # noqa: E731
@@ -117,7 +155,14 @@ def main(out_dir="experiments/out", quick=False):
         return (f"{'baseline ' if baseline else ''}{n}x{m} (N = {N}): first {first:.1f} s, warm {med:.3f} s, "
                 f"{its} Newton steps, {per_step * 1e3:.1f} ms per step, {per_step / (N * np.log2(N)) * 1e9:.0f} ns "
                 f"per N log2 N")
-    timing.baseline = False
+    def solver_setting(baseline):
+        """The baseline's exact block solve at every width, or today's setting (the solvers read it
+        when they are traced: JAX's caches are cleared at each switch)."""
+        if baseline != solver_setting.baseline:
+            jax.clear_caches()
+            journal_finite.EXACT_WIDTH = 10**9 if baseline else EXACT_WIDTH
+            solver_setting.baseline = baseline
+    solver_setting.baseline = False
     EXACT_WIDTH = journal_finite.EXACT_WIDTH
 
     grids = [(64, 16), (128, 32)] if quick else [(64, 16), (128, 32), (256, 64), (512, 128), (1024, 256)]
@@ -127,9 +172,16 @@ def main(out_dir="experiments/out", quick=False):
               "GMRES preconditioned by the film's block solve (or the V-cycle). Baseline in the same run, the solver "
               "before: the whole width (N = n (m - 1)), the exact block solve (rigid), the dense LU (liner)."]
     lines += ["rigid:"] + [timing(n, m, None) for n, m in grids]
+    grid = grids[min(2, len(grids) - 1)]            # 256 x 64 (128 x 32 quick), as the timing's
+    rigid = vjax.journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=D,
+                                 options=FiniteJournalOptions(n=grid[0], m=grid[1]))
+    ross = ross_lines(W, float(rigid.eccentricity), float(np.degrees(rigid.attitude_angle)), grid,
+                      ross_grids=(grid, (40, 20)))
     lines += [timing(n, m, None, baseline=True) for n, m in grids[:3]]
+    lines += ross
     lines += ["2 mm polymer liner:"] + [timing(n, m, liner) for n, m in grids]
     lines += [timing(n, m, liner, baseline=True) for n, m in [(32, 8), (48, 16), (64, 16)][:2 if quick else 3]]
+    solver_setting(False)           # the sections below: today's solver
     lines += ["", "Grid study of K and C (rigid, L/D = 1, Reynolds, groove fixed opposite the load; each 2 x 2 "
               "matrix over its largest entry): the largest change from the grid before"]
     previous = None
