@@ -26,7 +26,7 @@ import time
 
 import numpy as np
 
-from vjax import _checks
+from vjax import checks
 from vjax.material import Material
 
 from . import compact, dma, evaluate, io, master, prony, relaxation, spectrum
@@ -268,7 +268,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         raise ValueError("max_terms applies to method 'smooth' (method 'free' chooses its terms by BIC)")
     if not (isinstance(T_ref, (int, float)) and math.isfinite(T_ref)):
         raise ValueError(f"T_ref must be a finite temperature in C, got {T_ref!r}")
-    _checks.poisson("nu", nu)    # before reading and fitting, not when the material is built
+    checks.poisson("nu", nu)    # before reading and fitting, not when the material is built
     if relaxation.is_relaxation(paths):
         table = relaxation.read(paths, kind=kind, drop_nonpositive=drop_nonpositive)
         if method == "free":

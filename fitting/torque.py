@@ -269,15 +269,15 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     response is the relaxed one (E0 alone), and the torque carries no information about the
     Prony terms or the shift law (their torque derivatives are exactly zero) - use it to fit E0
     only. Signature ``model(material, shift, rpm, T, load)``."""
-    from vjax import _checks
+    from vjax import checks
     for name, v in (("R", R), ("radial_clearance", radial_clearance), ("length", length),
                     ("thickness", thickness)):
-        _checks.positive(name, v)
+        checks.positive(name, v)
     if not radial_clearance < R:
         raise ValueError(f"radial_clearance must be < R, got {radial_clearance} >= {R}")
-    _checks.one_of("turning", turning, _TURNING)
+    checks.one_of("turning", turning, _TURNING)
     if not callable(viscosity):
-        _checks.positive("viscosity", viscosity)
+        checks.positive("viscosity", viscosity)
     eta = viscosity if callable(viscosity) else (lambda T, v=float(viscosity): v)
     options = vjax.FiniteJournalOptions(n=n, m=m)
 

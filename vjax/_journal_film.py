@@ -14,7 +14,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _banded, _checks, _krylov, _scene, _solve, reference, reynolds
+from . import _banded, _krylov, _scene, _solve, checks, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .operator import RingOperator, grid, memory_revolutions
 
@@ -230,22 +230,22 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     shaft body) - the bodies at ``temperature``, None when rigid."""
     housing = as_body("housing", housing, hole, HOUSINGS)
     shaft = as_body("shaft", shaft, disc, SHAFTS)
-    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
-    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
+    _scene.scalars(checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
+    _scene.scalars(checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
                    supply_angle=supply_angle)
-    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
-    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
-    _checks.one_of("groove", groove, GROOVES)
+    _scene.scalars(checks.nonnegative, supply_pressure=supply_pressure)
+    checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    checks.one_of("groove", groove, GROOVES)
     memory_revolutions(memory)
-    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    Rv, cv = checks.values("R", R), checks.values("radial_clearance", radial_clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
         raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
-    _checks.load(load)
-    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    checks.load(load)
+    wB, wJ = (checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
     if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
         raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
                          "no hydrodynamic load capacity (omega_shaft, omega_housing)")
-    sa = _checks.values("supply_angle", supply_angle)
+    sa = checks.values("supply_angle", supply_angle)
     if sa is None:
         raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
     check_fits("housing", housing, R)

@@ -10,7 +10,7 @@ import dataclasses
 
 import numpy as np
 
-from . import _checks, _solve
+from . import _solve, checks
 
 
 class SceneResult:
@@ -26,13 +26,13 @@ class SceneResult:
         for f in dataclasses.fields(self):
             v = getattr(self, f.name)
             shape = np.shape(v)
-            if not _checks.is_concrete(v):
+            if not checks.is_concrete(v):
                 parts.append(f"{f.name}=<traced {shape}>")
             elif shape == () and f.name != "result":
                 parts.append(f"{f.name}={np.asarray(v).item():.6g}")
             elif f.name != "result":
                 parts.append(f"{f.name}=<array {shape}>")
-        if _checks.is_concrete(self.result) and np.shape(self.result) == ():
+        if checks.is_concrete(self.result) and np.shape(self.result) == ():
             parts.append(f"status: {_solve.MESSAGES[int(self.result)]}")
         return sep.join(parts)
 
@@ -50,13 +50,13 @@ def at_temperature(temperature, shift, *bodies):
         raise ValueError("temperature and shift must be given together (shift: a WLF/Arrhenius law)")
     if temperature is None:
         return bodies
-    _checks.finite("temperature", temperature)
-    _checks.scalar("temperature", temperature)
+    checks.finite("temperature", temperature)
+    checks.scalar("temperature", temperature)
     return tuple(None if b is None else b.at_temperature(shift, temperature) for b in bodies)
 
 
 def scalars(checker, **values):
-    """Check each named value with ``checker`` (e.g. ``_checks.positive``) and that it is a scalar."""
+    """Check each named value with ``checker`` (e.g. ``checks.positive``) and that it is a scalar."""
     for name, v in values.items():
         checker(name, v)
-        _checks.scalar(name, v)
+        checks.scalar(name, v)

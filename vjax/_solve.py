@@ -23,7 +23,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ._checks import is_concrete
+from .checks import is_concrete
 
 # Result codes (``Stats.result``).
 SUCCESS, MAX_ITERATIONS, STALLED, NONFINITE, INNER_FAILED, NONPHYSICAL = range(6)

@@ -31,7 +31,7 @@ import dataclasses
 import jax
 import numpy as np
 
-from . import _checks
+from . import checks
 from .material import Material
 from .operator import ring_operator, whirl_symbol
 
@@ -74,9 +74,9 @@ class Body:
 
 
 def _with_ref_length(kind, material, ref_length):
-    _checks.instance("material", material, Material, "a vjax.Material")
-    _checks.positive("ref_length", ref_length)
-    _checks.scalar("ref_length", ref_length)
+    checks.instance("material", material, Material, "a vjax.Material")
+    checks.positive("ref_length", ref_length)
+    checks.scalar("ref_length", ref_length)
     return Body(material, ref_length=ref_length, kind=kind)
 
 
@@ -102,10 +102,10 @@ AXIAL = ("slices", "3d")
 
 
 def _layer(kind, material, thickness, axial):
-    _checks.instance("material", material, Material, "a vjax.Material")
-    _checks.positive("thickness", thickness)
-    _checks.scalar("thickness", thickness)
-    _checks.one_of("axial", axial, AXIAL)
+    checks.instance("material", material, Material, "a vjax.Material")
+    checks.positive("thickness", thickness)
+    checks.scalar("thickness", thickness)
+    checks.one_of("axial", axial, AXIAL)
     return Body(material, thickness=thickness, kind=kind, axial=axial)
 
 
@@ -144,7 +144,7 @@ def check_fits(name: str, body: Body | None, R) -> None:
     its operator resolves thinner layers poorly), and a sleeve thinner than R (it needs a core)."""
     if body is None or body.kind not in ("liner", "sleeve"):
         return
-    t, r = _checks.values("thickness", body.thickness), _checks.values("R", R)
+    t, r = checks.values("thickness", body.thickness), checks.values("R", R)
     if t is None or r is None:
         return
     if not np.all(t >= 1e-3 * r) or (body.kind == "sleeve" and not np.all(t < r)):

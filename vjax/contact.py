@@ -41,8 +41,8 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 import numpy as np
-from . import _checks, _krylov, _solve
-from ._checks import is_concrete
+from . import _krylov, _solve, checks
+from .checks import is_concrete
 from .operator import RingOperator
 
 
@@ -94,12 +94,12 @@ class ContactOptions:
     window: bool = True
 
     def __post_init__(self):
-        _checks.option_number("tol", self.tol)
-        _checks.option_number("krylov_tol", self.krylov_tol)
-        _checks.option_number("krylov_tol_step", self.krylov_tol_step)
-        _checks.option_count("max_iter", self.max_iter)
-        _checks.option_count("krylov", self.krylov)
-        _checks.one_of("krylov_method", self.krylov_method, ("bicgstab", "gmres"))
+        checks.option_number("tol", self.tol)
+        checks.option_number("krylov_tol", self.krylov_tol)
+        checks.option_number("krylov_tol_step", self.krylov_tol_step)
+        checks.option_count("max_iter", self.max_iter)
+        checks.option_count("krylov", self.krylov)
+        checks.one_of("krylov_method", self.krylov_method, ("bicgstab", "gmres"))
         if not isinstance(self.window, bool):
             raise ValueError(f"window must be True or False, got {self.window!r}")
 
@@ -408,17 +408,17 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
     Krylov solve that failed is reported as such). It never raises on non-convergence: the
     scenes decide (``throw=``).
     """
-    _checks.instance("op", op, RingOperator, "a vjax.RingOperator (see ring_operator)")
-    _checks.instance("options", options, ContactOptions, "a vjax.ContactOptions")
+    checks.instance("op", op, RingOperator, "a vjax.RingOperator (see ring_operator)")
+    checks.instance("options", options, ContactOptions, "a vjax.ContactOptions")
     if not callable(interference):
         raise ValueError(f"interference must be a function interference(q, args) -> (N,), got {interference!r}")
     if q0 is not None:
         if not callable(force):
             raise ValueError(f"load control (q0 given) needs a function force(sigma, u, args), got {force!r}")
-        _checks.finite("q0", q0)
-        _checks.finite("F", F)
+        checks.finite("q0", q0)
+        checks.finite("F", F)
     if sigma_init is not None:
-        _checks.finite("sigma_init", sigma_init)
+        checks.finite("sigma_init", sigma_init)
         if jnp.shape(sigma_init) != (op.n,):
             raise ValueError(f"sigma_init must have shape ({op.n},), got {jnp.shape(sigma_init)}")
     if q0 is None:
@@ -436,8 +436,8 @@ def solve_contact(op: RingOperator, interference, args=None, q0=None, force=None
     if getattr(d, "shape", None) != (op.n,):
         raise ValueError(f"interference(q, args) must return shape ({op.n},) (one overlap per element), "
                          f"got {getattr(d, 'shape', d)}")
-    if _checks.is_concrete((q0, args)):
-        _checks.finite("interference(q0, args)", interference(q0, args))
+    if checks.is_concrete((q0, args)):
+        checks.finite("interference(q0, args)", interference(q0, args))
     sigma_init = jnp.zeros(op.n, q0.dtype) if sigma_init is None else jnp.asarray(sigma_init, q0.dtype)
     return _solve_implicit(op, interference, force, args, q0, F, options, sigma_init)
 

@@ -114,7 +114,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from . import _checks, _scene, _solve, journal_finite, reference, reynolds
+from . import _scene, _solve, checks, journal_finite, reference, reynolds
 from . import _journal_film as film
 from .operator import RingOperator
 
@@ -145,16 +145,16 @@ class JournalOptions:
     krylov_modes: int = 32
 
     def __post_init__(self):
-        _checks.option_count("n", self.n, 16)
+        checks.option_count("n", self.n, 16)
         if self.n % 2:
             raise ValueError(f"n must be even, got {self.n}")
         if self.tol is not None:
-            _checks.option_number("tol", self.tol)
-        _checks.option_count("max_iter", self.max_iter)
-        _checks.option_count("stages", self.stages)
-        _checks.one_of("strategy", self.strategy, ("auto", "newton", "continuation"))
-        _checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
-        _checks.option_count("krylov_modes", self.krylov_modes, 2)
+            checks.option_number("tol", self.tol)
+        checks.option_count("max_iter", self.max_iter)
+        checks.option_count("stages", self.stages)
+        checks.one_of("strategy", self.strategy, ("auto", "newton", "continuation"))
+        checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
+        checks.option_count("krylov_modes", self.krylov_modes, 2)
 
     @property
     def krylov(self) -> bool:
@@ -405,7 +405,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
             tilt=tilt, temperature=temperature, shift=shift, initial=initial, throw=throw,
             options=journal_finite.FiniteJournalOptions() if options == JournalOptions() else options)
     groove = "line_of_centres" if groove is None else groove
-    _checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
+    checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
     pr, cfg, housing, shaft = film.setup(
         R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
         omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
@@ -433,7 +433,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
     # the hint only for a failure it can explain (concrete values; its eager operations
     # would otherwise compile on every first call)
-    failed = throw and _checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
+    failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
     _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
     return sol
 
@@ -460,7 +460,7 @@ def _failure_hint(pr: film.Params, n: int) -> str:
     film's capacity, so that the bodies carry it through an elastohydrodynamic film far
     thinner than the clearance, whose inlet and exit the grid does not resolve."""
     ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
-    if not ops or not _checks.is_concrete((pr.c, pr.p_ref, pr.W, pr.eta, pr.v, *[op.symbol for op in ops])):
+    if not ops or not checks.is_concrete((pr.c, pr.p_ref, pr.W, pr.eta, pr.v, *[op.symbol for op in ops])):
         return ""
     ratio = float(sum(abs(complex(op.symbol[2])) for op in ops) * pr.p_ref / pr.c)
     if ratio >= 30:      # continuation has been seen to converge up to ~20

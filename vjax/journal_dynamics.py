@@ -62,7 +62,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _solve, journal_finite, reynolds
+from . import _solve, checks, journal_finite, reynolds
 from . import _journal_film as film
 from .journal import JournalOptions, JournalResult, journal_bearing
 from .operator import circulant, grid
@@ -123,7 +123,7 @@ class JournalCoefficients:
             scale = 1.0
         else:
             length = 1.0 if length is None else length
-            _checks.positive("length", length)
+            checks.positive("length", length)
             warnings.warn("JournalCoefficients.table/save_csv: the infinitely long bearing's coefficients times the "
                           f"length ({float(length)!r} m), not those of a finite bearing (side leakage ignored: "
                           "stiffness and damping off by factors at L/D ~ 1); use journal_coefficients(..., length=L)",
@@ -298,7 +298,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     whirl = jnp.atleast_1d(jnp.asarray(whirl, jnp.result_type(float)))
     if whirl.ndim != 1:
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {whirl.shape}")
-    _checks.finite("whirl", whirl)
+    checks.finite("whirl", whirl)
     if length is not None or tilt is not None or supply_width != 1.0:
         # the finite bearing (vjax.journal_finite): Z, K, C the bearing's totals
         journal_finite.check_supported(length, groove, cavitation)
@@ -362,7 +362,7 @@ def stability_threshold(coefficients: JournalCoefficients, length=1.0) -> dict:
     """
     if coefficients.length is not None:      # a finite bearing's totals
         length = 1.0
-    _checks.positive("length", length)
+    checks.positive("length", length)
     K = np.asarray(coefficients.stiffness) * length
     C = np.asarray(coefficients.damping) * length
     W = np.asarray(coefficients.whirl)

@@ -100,7 +100,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _blocks, _checks, _film2d, _journal_film, _krylov, _multigrid, _scene, _solve, reference, reynolds
+from . import _blocks, _film2d, _journal_film, _krylov, _multigrid, _scene, _solve, checks, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .layer3d_land import LandOperator, dct1, idct1
 from .layer3d_land import whirl_symbol as land_whirl_symbol
@@ -137,15 +137,15 @@ class FiniteJournalOptions:
     linear_solver: str = "auto"
 
     def __post_init__(self):
-        _checks.option_count("n", self.n, 8)
-        _checks.option_count("m", self.m, 2)
+        checks.option_count("n", self.n, 8)
+        checks.option_count("m", self.m, 2)
         if self.n % 2 or self.m % 2:
             raise ValueError(f"n and m must be even, got n={self.n}, m={self.m}")
-        _checks.one_of("spacing", self.spacing, _film2d.SPACINGS)
+        checks.one_of("spacing", self.spacing, _film2d.SPACINGS)
         if self.tol is not None:
-            _checks.option_number("tol", self.tol)
-        _checks.option_count("max_iter", self.max_iter)
-        _checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
+            checks.option_number("tol", self.tol)
+        checks.option_count("max_iter", self.max_iter)
+        checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
 
     @property
     def krylov(self) -> bool:
@@ -709,31 +709,31 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
           groove="fixed", options: FiniteJournalOptions = FiniteJournalOptions()):
     """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`); ``groove``
     "fixed" (an axial groove at ``supply_angle``) or "circumferential"."""
-    _checks.one_of("groove", groove, GROOVES)
-    _checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
+    checks.one_of("groove", groove, GROOVES)
+    checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
     memory_revolutions(memory)
-    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
-    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
-    _scene.scalars(_checks.nonnegative, supply_pressure=supply_pressure)
-    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
-    Rv, cv = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    _scene.scalars(checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, length=length)
+    _scene.scalars(checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    _scene.scalars(checks.nonnegative, supply_pressure=supply_pressure)
+    checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    Rv, cv = checks.values("R", R), checks.values("radial_clearance", radial_clearance)
     if Rv is not None and cv is not None and not np.all(cv < Rv):
         raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
-    wB, wJ = (_checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    wB, wJ = (checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
     if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
         raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
                          "no hydrodynamic load capacity (omega_shaft, omega_housing)")
-    sw = _checks.values("supply_width", supply_width)
+    sw = checks.values("supply_width", supply_width)
     if sw is None or not (0 < sw <= 1):
         raise ValueError(f"supply_width must be a concrete number in (0, 1] (a fraction of the length), "
                          f"got {supply_width!r}")
-    _checks.load(load)
+    checks.load(load)
     housing, shaft = bodies_at(R, radial_clearance, housing, shaft, temperature, shift)
     if any(b is not None and b.axial == "3d" for b in (housing, shaft)) and options.spacing != "uniform":
         raise ValueError("a 3D layer (axial='3d') needs uniform axial nodes (its cosine modes): "
                          "FiniteJournalOptions(spacing='uniform')")
     if tilt is not None:
-        _checks.finite("tilt", tilt)
+        checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
             raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {np.shape(tilt)}")
     n, m = options.n, options.m
@@ -746,8 +746,8 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
                              "(groove='circumferential') runs round the mid-width: leave supply_width at 1")
         mask[:, m // 2] = 1.0            # the mid-width nodes (m is even: z = 0 is a node)
     elif supply_angle is not None:
-        _scene.scalars(_checks.finite, supply_angle=supply_angle)
-        sa = _checks.values("supply_angle", supply_angle)
+        _scene.scalars(checks.finite, supply_angle=supply_angle)
+        sa = checks.values("supply_angle", supply_angle)
         if sa is None:
             raise ValueError("supply_angle must be a concrete number (it selects a grid column)")
         g = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
@@ -863,7 +863,7 @@ def check_supported(length, groove, cavitation):
     if groove not in (None,) + GROOVES:
         raise ValueError(f"groove must be 'fixed' (an axial groove fixed in the bearing) or 'circumferential' "
                          f"with length=, got {groove!r}")
-    _checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
 
 
 def from_journal_arguments(R, radial_clearance, viscosity, load, *, length, housing, shaft, omega_shaft,
@@ -1029,7 +1029,7 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, whirl=Non
     at = jnp.atleast_1d(jnp.asarray(0.0 if whirl is None else whirl, jnp.result_type(float)))
     if at.ndim != 1:
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {at.shape}")
-    _checks.finite("whirl", at)
+    checks.finite("whirl", at)
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
     _, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), at, tilt=True)

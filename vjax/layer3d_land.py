@@ -39,7 +39,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, green
+from . import checks, green
 from .layer3d import layer_modes
 from .material import Material
 from .operator import effective_compliance, element_symbol, memory_revolutions, whirl_compliance
@@ -103,10 +103,10 @@ def land_operator(kind: str, material: Material, R, thickness, length, n: int, m
         raise ValueError(f"kind must be one of {', '.join(green.LAYERS)}, got {kind!r}")
     if not isinstance(n, (int, np.integer)) or n < 4 or not isinstance(m, (int, np.integer)) or m < 2:
         raise ValueError(f"n >= 4 and m >= 2 must be integers, got n={n!r}, m={m!r}")
-    _checks.instance("material", material, Material, "a vjax.Material")
+    checks.instance("material", material, Material, "a vjax.Material")
     for name, val in (("R", R), ("thickness", thickness), ("length", length)):
-        _checks.positive(name, val)
-        _checks.scalar(name, val)
+        checks.positive(name, val)
+        checks.scalar(name, val)
     memory_revolutions(memory)
     return LandOperator(_symbol(kind, material, R, thickness, length, int(n), int(m), omega, memory), int(n))
 

@@ -34,7 +34,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _solve
+from . import _solve, checks
 
 GAS_CONSTANT = 8.314462618  # J/(mol K)
 KELVIN = 273.15
@@ -87,10 +87,10 @@ class Material:
     @classmethod
     def elastic(cls, E, nu) -> "Material":
         """Elastic solid, Young's modulus ``E`` (Pa)."""
-        _checks.positive("E", E)
-        _checks.poisson("nu", nu)
-        _checks.scalar("E", E)
-        _checks.scalar("nu", nu)
+        checks.positive("E", E)
+        checks.poisson("nu", nu)
+        checks.scalar("E", E)
+        checks.scalar("nu", nu)
         empty = jnp.zeros((0,), dtype=jnp.result_type(E, float))
         return cls(jnp.asarray(E, dtype=empty.dtype), empty, empty, jnp.asarray(nu, dtype=empty.dtype))
 
@@ -98,11 +98,11 @@ class Material:
     def sls(cls, E0, Einf, tau, nu) -> "Material":
         """Standard linear solid (Eq. 1.35, 1.42): rubbery ``E0``, glassy ``Einf`` > E0 (Pa),
         **relaxation** time ``tau`` (s). Its retardation time is (Einf/E0) tau (Eq. 1.41)."""
-        _checks.positive("E0", E0)
-        _checks.positive("tau", tau)
+        checks.positive("E0", E0)
+        checks.positive("tau", tau)
         for name, val in (("E0", E0), ("Einf", Einf), ("tau", tau)):
-            _checks.scalar(name, val)
-        e0, einf = _checks.values("E0", E0), _checks.values("Einf", Einf)
+            checks.scalar(name, val)
+        e0, einf = checks.values("E0", E0), checks.values("Einf", Einf)
         if e0 is not None and einf is not None and not np.all(einf > e0):
             raise ValueError(f"Einf must be > E0 for a standard linear solid, got Einf={Einf!r}, E0={E0!r}")
         return cls.prony(E0, jnp.atleast_1d(jnp.asarray(Einf) - jnp.asarray(E0)), jnp.atleast_1d(tau), nu)
@@ -113,17 +113,17 @@ class Material:
 
         ``moduli`` (Pa) and ``times`` (s) are 1-D of equal length, all > 0, times distinct.
         """
-        _checks.positive("E0", E0)
-        _checks.positive("moduli", moduli)
-        _checks.positive("times", times)
-        _checks.poisson("nu", nu)
-        _checks.scalar("E0", E0)
-        _checks.scalar("nu", nu)
+        checks.positive("E0", E0)
+        checks.positive("moduli", moduli)
+        checks.positive("times", times)
+        checks.poisson("nu", nu)
+        checks.scalar("E0", E0)
+        checks.scalar("nu", nu)
         moduli, times = jnp.atleast_1d(jnp.asarray(moduli)), jnp.atleast_1d(jnp.asarray(times))
         if moduli.ndim != 1 or moduli.shape != times.shape:
             raise ValueError(
                 f"moduli and times must be 1-D of equal length, got shapes {moduli.shape} and {times.shape}")
-        t = _checks.values("times", times)
+        t = checks.values("times", times)
         if t is not None and len(np.unique(t)) != len(t):
             raise ValueError("times must be distinct (merge Prony terms with equal relaxation times)")
         dtype = jnp.result_type(E0, moduli, times, float)
@@ -256,17 +256,17 @@ class WLF:
     T_ref: jax.Array
 
     def __init__(self, C1, C2, T_ref):
-        _checks.positive("C1", C1)
-        _checks.positive("C2", C2)
-        _checks.finite("T_ref", T_ref)
+        checks.positive("C1", C1)
+        checks.positive("C2", C2)
+        checks.finite("T_ref", T_ref)
         object.__setattr__(self, "C1", C1)
         object.__setattr__(self, "C2", C2)
         object.__setattr__(self, "T_ref", T_ref)
 
     def log10_aT(self, T):
         dT = jnp.asarray(T) - self.T_ref
-        t, c2 = _checks.values("T", T), _checks.values("C2", self.C2)
-        if t is not None and c2 is not None and _checks.is_concrete(self.T_ref):
+        t, c2 = checks.values("T", T), checks.values("C2", self.C2)
+        if t is not None and c2 is not None and checks.is_concrete(self.T_ref):
             if np.any(t - np.asarray(self.T_ref) <= -c2):
                 raise ValueError(
                     f"T={T!r} C is at or below the WLF asymptote T_ref - C2 = {float(np.asarray(self.T_ref) - c2):.4g} C")
@@ -282,16 +282,16 @@ class Arrhenius:
     T_ref: jax.Array
 
     def __init__(self, Ea, T_ref):
-        _checks.positive("Ea", Ea)
-        _checks.finite("T_ref", T_ref)
-        t = _checks.values("T_ref", T_ref)
+        checks.positive("Ea", Ea)
+        checks.finite("T_ref", T_ref)
+        t = checks.values("T_ref", T_ref)
         if t is not None and np.any(t <= -KELVIN):
             raise ValueError(f"T_ref must be above absolute zero, got {T_ref!r} C")
         object.__setattr__(self, "Ea", Ea)
         object.__setattr__(self, "T_ref", T_ref)
 
     def log10_aT(self, T):
-        t = _checks.values("T", T)
+        t = checks.values("T", T)
         if t is not None and np.any(t <= -KELVIN):
             raise ValueError(f"T must be above absolute zero (-273.15 C), got {T!r}")
         inv = 1.0 / (jnp.asarray(T) + KELVIN) - 1.0 / (self.T_ref + KELVIN)

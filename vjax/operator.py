@@ -39,14 +39,14 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, green
+from . import checks, green
 from .material import Material
 
 
 def memory_revolutions(memory) -> float:
     """Number of revolutions of load history: inf for "periodic", 1 for "thesis"."""
     if isinstance(memory, str):
-        _checks.one_of("memory", memory, ("periodic", "thesis"))
+        checks.one_of("memory", memory, ("periodic", "thesis"))
         return np.inf if memory == "periodic" else 1.0
     try:
         m = float(memory)
@@ -157,9 +157,9 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     1.0
     """
     if kind in green.LAYERS:
-        _checks.positive("thickness", thickness)
-        _checks.scalar("thickness", thickness)
-        t, r = _checks.values("thickness", thickness), _checks.values("R", R)
+        checks.positive("thickness", thickness)
+        checks.scalar("thickness", thickness)
+        t, r = checks.values("thickness", thickness), checks.values("R", R)
         if t is not None and r is not None and not (t >= 1e-3 * r and (kind == "liner" or t < r)):
             raise ValueError(f"thickness must be at least 1e-3 R{'' if kind == 'liner' else ' and below R'} for a "
                              f"{kind}, got thickness={thickness!r} with R={R!r}")
@@ -167,12 +167,12 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
         green._check_kind(kind)
     if not isinstance(n, (int, np.integer)) or n < 4:
         raise ValueError(f"n (number of elements) must be an integer >= 4, got {n!r}")
-    _checks.instance("material", material, Material, "a vjax.Material")
-    _checks.positive("R", R)
-    _checks.positive("ref_length", ref_length)
-    _checks.finite("omega", omega)
+    checks.instance("material", material, Material, "a vjax.Material")
+    checks.positive("R", R)
+    checks.positive("ref_length", ref_length)
+    checks.finite("omega", omega)
     for name, val in (("R", R), ("ref_length", ref_length), ("omega", omega)):
-        _checks.scalar(name, val)
+        checks.scalar(name, val)
     memory_revolutions(memory)
     return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length, thickness), int(n))
 

@@ -27,7 +27,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from . import _checks, _scene, _solve
+from . import _scene, _solve, checks
 from .bodies import Body, as_body, check_fits, hole
 from .contact import ContactOptions, solve_contact, solve_with_fallback
 from .operator import grid, memory_revolutions, spectral_derivative
@@ -45,7 +45,7 @@ class PinOptions(ContactOptions):
 
     def __post_init__(self):
         super().__post_init__()
-        _checks.option_count("n", self.n, 16)
+        checks.option_count("n", self.n, 16)
 
 
 @jax.tree_util.register_dataclass
@@ -155,10 +155,10 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
     housing = as_body("housing", housing, hole, HOUSINGS)
     if housing is None:
         raise ValueError("housing must be a deformable body: a rigid pin in a rigid hole has no contact solution")
-    _checks.instance("options", options, PinOptions, "a vjax.PinOptions")
-    _scene.scalars(_checks.positive, R=R, radial_clearance=radial_clearance, load=load)
-    _scene.scalars(_checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
-    r_, c_ = _checks.values("R", R), _checks.values("radial_clearance", radial_clearance)
+    checks.instance("options", options, PinOptions, "a vjax.PinOptions")
+    _scene.scalars(checks.positive, R=R, radial_clearance=radial_clearance, load=load)
+    _scene.scalars(checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    r_, c_ = checks.values("R", R), checks.values("radial_clearance", radial_clearance)
     if r_ is not None and c_ is not None and not c_ < r_:
         raise ValueError(f"radial_clearance must be smaller than the bore radius R, got "
                          f"radial_clearance={radial_clearance!r} >= R={R!r}")

@@ -31,7 +31,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks
+from . import checks
 from ._solve import bisect
 
 __all__ = ["hertz_line_contact", "lame_displacement", "winkler_pin", "oedometric_stiffness", "persson_shape_functions", "persson_coefficients",
@@ -49,9 +49,9 @@ def hertz_line_contact(load, R1, E1, nu1, R2=None, E2=None, nu2=None):
     (m), the peak p0 = 2 F / (pi a) (Pa) and ``pressure(x) = p0 sqrt(1 - x^2/a^2)`` (0 for
     |x| > a), for the load F (N/m).
     """
-    _checks.positive("load", load)
+    checks.positive("load", load)
     curvature = 1.0 / R1 + (0.0 if R2 is None else 1.0 / R2)
-    if _checks.is_concrete(curvature) and not np.all(np.asarray(curvature) > 0):
+    if checks.is_concrete(curvature) and not np.all(np.asarray(curvature) > 0):
         raise ValueError(f"R1, R2 must give a positive relative curvature 1/R1 + 1/R2, got R1={R1!r}, R2={R2!r}")
     compliance = (1 - nu1**2) / E1 + (0.0 if E2 is None else (1 - nu2**2) / E2)
     a = jnp.sqrt(4 * load / (curvature * jnp.pi / compliance))
@@ -68,7 +68,7 @@ def lame_displacement(kind: str, pressure, R, E, nu):
     """Radial displacement (m, positive into the body) of a uniform ``pressure`` (Pa) on
     a hole of radius R in an infinite plane (``kind="hole"``: p R (1 + nu) / E) or on the
     surface of a solid cylinder (``kind="disc"``: p R (1 + nu)(1 - 2 nu) / E), plane strain."""
-    _checks.one_of("kind", kind, ("hole", "disc"))
+    checks.one_of("kind", kind, ("hole", "disc"))
     factor = (1 + nu) if kind == "hole" else (1 + nu) * (1 - 2 * nu)
     return pressure * R * factor / E
 
@@ -197,8 +197,8 @@ def persson_pressure(theta, b, E, R, dR):
 
 def _scalars_positive(**values):
     for name, v in values.items():
-        _checks.positive(name, v)
-        _checks.scalar(name, v)
+        checks.positive(name, v)
+        checks.scalar(name, v)
 
 
 # ------------------------------------------------------------------------------ long journal bearing
@@ -238,9 +238,9 @@ def long_bearing(eps, R, radial_clearance, viscosity, speed, conditions: str = "
       root of p(theta_2) = 0 (bisection); load and attitude by Gauss-Legendre quadrature
       with ``n_quad`` points.
     """
-    _checks.one_of("conditions", conditions, CONDITIONS)
+    checks.one_of("conditions", conditions, CONDITIONS)
     _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed)
-    e = _checks.values("eps", eps)
+    e = checks.values("eps", eps)
     if e is not None and not (0 < e < 1):
         raise ValueError(f"eps must be in (0, 1), got {eps!r}")
     c, eta, v = radial_clearance, viscosity, speed
@@ -313,9 +313,9 @@ def long_bearing_coefficients(eps, R, radial_clearance, viscosity, speed, condit
     C_YX = -dF_t/deps' / c, C_XY = 2 dF_r/domega_e / (eps c), C_YY = 2 dF_t/domega_e / (eps c)
     (derivatives of the closed forms, taken by JAX).
     """
-    _checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
+    checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
     _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed)
-    e = _checks.values("eps", eps)
+    e = checks.values("eps", eps)
     if e is not None and not (0 < e < 1):
         raise ValueError(f"eps must be in (0, 1), got {eps!r}")
     c = radial_clearance
@@ -346,9 +346,9 @@ def short_bearing(eps, R, radial_clearance, viscosity, speed, length, conditions
     "sommerfeld": the whole antisymmetric film, W_r = 0, W_t twice the above, attitude pi/2.
     Returns a dict ``load`` |W| (N), ``attitude`` (rad), ``pressure(theta, z)`` (Pa).
     """
-    _checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
+    checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
     _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed, length=length)
-    e = _checks.values("eps", eps)
+    e = checks.values("eps", eps)
     if e is not None and not (0 < e < 1):
         raise ValueError(f"eps must be in (0, 1), got {eps!r}")
     c, L, U = radial_clearance, length, 2 * speed

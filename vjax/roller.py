@@ -67,7 +67,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _checks, _roller_balance as balance, _scene, _solve
+from . import _roller_balance as balance, _scene, _solve, checks
 from .bodies import as_body, check_fits, disc, hole
 from .contact import ContactOptions
 from .operator import grid, memory_revolutions, spectral_derivative
@@ -88,10 +88,10 @@ class RollerOptions:
     contact: ContactOptions = ContactOptions(window=False)   # patches all round the rings
 
     def __post_init__(self):
-        _checks.option_count("n", self.n, 16)
-        _checks.option_number("tol", self.tol)
-        _checks.option_count("max_iter", self.max_iter)
-        _checks.instance("contact", self.contact, ContactOptions, "a vjax.ContactOptions")
+        checks.option_count("n", self.n, 16)
+        checks.option_number("tol", self.tol)
+        checks.option_count("max_iter", self.max_iter)
+        checks.instance("contact", self.contact, ContactOptions, "a vjax.ContactOptions")
 
 
 @jax.tree_util.register_dataclass
@@ -291,13 +291,13 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
     shaft = as_body("shaft", shaft, disc, SHAFTS)
     if housing is None and shaft is None:
         raise ValueError("housing and shaft cannot both be None: at least one ring must be deformable")
-    _checks.instance("options", options, RollerOptions, "a vjax.RollerOptions")
-    _scene.scalars(_checks.positive, R_outer=R_outer, R_inner=R_inner, roller_diameter=roller_diameter, load=load)
-    _scene.scalars(_checks.finite, load_angle=load_angle, omega_shaft=omega_shaft, omega_housing=omega_housing)
+    checks.instance("options", options, RollerOptions, "a vjax.RollerOptions")
+    _scene.scalars(checks.positive, R_outer=R_outer, R_inner=R_inner, roller_diameter=roller_diameter, load=load)
+    _scene.scalars(checks.finite, load_angle=load_angle, omega_shaft=omega_shaft, omega_housing=omega_housing)
     if roller_angle is not None:
-        _scene.scalars(_checks.finite, roller_angle=roller_angle)
+        _scene.scalars(checks.finite, roller_angle=roller_angle)
     if diametral_clearance is not None:
-        _scene.scalars(_checks.finite, diametral_clearance=diametral_clearance)
+        _scene.scalars(checks.finite, diametral_clearance=diametral_clearance)
     if not isinstance(n_rollers, (int, np.integer)) or n_rollers < 2:
         raise ValueError(f"n_rollers must be an integer >= 2, got {n_rollers!r}")
     memory_revolutions(memory)
@@ -335,9 +335,9 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
 
 def _check_fit(R_outer, R_inner, roller_diameter, clearance, Z):
     """Concrete geometry must leave room for Z rollers (the checks skip traced values)."""
-    ro, ri, D = (_checks.values(k, v) for k, v in (("R_outer", R_outer), ("R_inner", R_inner),
+    ro, ri, D = (checks.values(k, v) for k, v in (("R_outer", R_outer), ("R_inner", R_inner),
                                                     ("roller_diameter", roller_diameter)))
-    pd = None if clearance is None else _checks.values("diametral_clearance", clearance)
+    pd = None if clearance is None else checks.values("diametral_clearance", clearance)
     if ro is not None and ri is not None and not np.all(ri < ro):
         raise ValueError(f"R_inner must be smaller than R_outer, got R_inner={R_inner!r} >= R_outer={R_outer!r}")
     if ro is None or ri is None or D is None:

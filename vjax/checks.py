@@ -1,4 +1,5 @@
-"""Argument checks shared by the public constructors.
+"""Argument checks shared by the public constructors of vjax and fitting (a message naming the
+argument and the problem).
 
 Checks run only on concrete values: inside ``jit``/``vmap``/``grad`` the arguments are
 tracers and are passed through unchecked (the solvers report non-convergence instead).
