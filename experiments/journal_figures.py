@@ -307,9 +307,11 @@ def ref_length_sensitivity(out, n):
 
 
 # The finite-length HS case runs with a 100x more viscous oil (Hersey number -4.5e-7; the same
-# omega~_B, omega~_J). At the thesis's H = -4.5e-9 the bore carries a finite bearing's load
-# through a film thinner than 1e-3 c, which the finite bearing's grids (64 x 16 to 256 x 8) do
-# not resolve (Newton does not converge; the long bearing reaches 5e-3 c there); at 30x the
+# omega~_B, omega~_J). At the thesis's H = -4.5e-9 the long bearing runs at eps 1.10 (film
+# 9e-3 c at n = 256): its soft bore carries the journal past the clearance. The finite bearing's
+# plane-strain slices cannot: the sections at the land's ends carry no pressure and do not
+# deform, the film pinches there as eps -> 1, and Newton stalls at eps 0.998-1.000 (64 x 16 to
+# 128 x 32, uniform or cosine axial nodes; the minimum film at z = +-L/2); at 30x the
 # L/D = 0.5 film is 0.01 c and still changes 4-fold from 48 x 8 to 64 x 16. At 100x the finite
 # bearings on 64 x 16 and 128 x 16 agree to 3e-4 in eps and 1e-3 in torque.
 FINITE_VISCOSITY_FACTOR = 100.0
