@@ -64,7 +64,7 @@ def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0
 
 
 # journal scene: the liner's Poisson's ratio (a thermoplastic's; the calibration's 0.5 is a
-# rubber's, whose bonded layer bulges into the clearance at the land's ends)
+# rubber's: a 10 mm rubber liner in 3D bulges into the clearance at the land's ends)
 JOURNAL_NU = 0.4
 
 
@@ -85,8 +85,8 @@ def _scene(name, quick):
     (rpm), (lowest, highest) patch speed per shaft speed)."""
     from fitting import torque as ft
     if name == "journal":
-        # oil films 0.1-0.6 c thick at the minimum: every solve converges, at the truth and at the
-        # start (moduli halved or doubled too)
+        # oil films 0.08-0.6 c thick at the minimum: every solve converges at the truth, at the
+        # start and with the moduli doubled (halved, the heaviest slowest point does not)
         L = 0.05
         return (ft.journal_model(length=L, thickness=3e-3, viscosity=iso_vg32), None,
                 np.geomspace(700.0, 3000.0, 4 if quick else 6), (1.0, 1.0),
