@@ -284,8 +284,9 @@ def relaxation_curve(table, material, shift, path=None):
 
 
 def torque_fit(data, fits, sigma, path=None, truth=None):
-    """Torque versus shaft speed, one colour per (temperature, load): data with error bars,
-    model at the start (dotted) and after the fit (dashed), one panel per fit in ``fits``
+    """Torque versus speed (rpm of the turning part: the shaft, or a journal bearing's lined
+    housing), one colour per (temperature, load): data with error bars, model at the start
+    (dotted) and after the fit (dashed), one panel per fit in ``fits``
     (label -> :class:`fitting.torque.TorqueFit`); ``truth`` (optional, twin experiments):
     torques of the true material (thin line)."""
     conds = sorted(set(zip(data.T.tolist(), data.load.tolist())))
@@ -305,7 +306,7 @@ def torque_fit(data, fits, sigma, path=None, truth=None):
         ax.set_xscale("log")
         if np.all(data.torque > 0):
             ax.set_yscale("log")
-        ax.set_xlabel("shaft speed (rpm)")
+        ax.set_xlabel("speed (rpm)")
         ax.set_title(f"{label}: start (dotted), fitted (dashed)" + (", truth (thin)" if truth is not None else ""),
                      fontsize=9)
     axes[0].set_ylabel("friction torque (N m/m)")
