@@ -8,7 +8,8 @@ Run::
 Case: R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s, groove fixed opposite the
 load at 1e4 Pa, Reynolds conditions, 32 theta cells by m = 16, 32, 48 axial intervals (--quick:
 16 only): the minimum film of the 3D layer, at the land's ends, needs the axial refinement (the
-pressure's drop to ambient there). Bodies: an SLS polymer (E0 = 0.3 GPa, E_inf = 3 GPa,
+pressure's drop to ambient there; a grid study of it from m = 32 to 256 follows the table, not
+with --quick). Bodies: an SLS polymer (E0 = 0.3 GPa, E_inf = 3 GPa,
 tau = 1 ms, nu = 0.4) as a 5 mm liner bonded in a rigid housing, and a 2 mm liner with a 3 mm
 sleeve on the shaft. L/D = 0.5 and 1;
 the load is the long bearing's at eps = 0.5 times L times 0.5 (L/D = 1) or 0.25 (L/D = 0.5).
@@ -68,6 +69,8 @@ def main(out_dir="experiments/out", quick=False):
             for m in axial_grids:
                 a, b = by[(LD, m, name, "slices")], by[(LD, m, name, "3d")]
                 lines.append(f"L/D {LD} m {m} {name}: " + "  ".join(f"{b[i] / a[i] - 1:+.2%}" for i in (4, 5, 7, 8)))
+    if not quick:
+        lines += ["", end_film_study(R, C, ETA, WJ, D, sls, w_long)]
     text = "\n".join(lines)
     print(text)
     _common.atomic_write_text(out / "journal_liner3d.txt", text + "\n")
@@ -75,6 +78,27 @@ def main(out_dir="experiments/out", quick=False):
                       comments=[f"R={R} m, c={C} m, eta={ETA} Pa s, omega_shaft={WJ} rad/s, SLS(0.3 GPa, 3 GPa, 1 ms, 0.4), "
                                 f"grids 32 x {axial_grids}, Reynolds, groove opposite the load at 1e4 Pa"])
     return rows
+
+
+def end_film_study(R, C, ETA, WJ, D, sls, w_long, axial_grids=(32, 64, 128, 256)):
+    """The 3D layer's minimum film (at the land's ends) against the axial grid, the 5 mm liner at
+    L/D = 1 on 32 x m: each doubling's change, their ratio (4: second order) and the Richardson
+    extrapolation of the last two grids at the observed ratio."""
+    import vjax
+    from vjax import FiniteJournalOptions
+    films = []
+    for m in axial_grids:
+        s = vjax.journal_bearing(R, C, ETA, 0.5 * w_long * D, omega_shaft=WJ, length=D, supply_pressure=1e4,
+                                 options=FiniteJournalOptions(n=32, m=m, max_iter=100), throw=False,
+                                 housing=vjax.liner(sls, 5e-3, axial="3d"))
+        films.append(1e6 * float(s.min_film))
+        print(f"end film, m = {m}: {films[-1]:.4f} um (converged {bool(s.converged)})", flush=True)
+    changes = [b - a for a, b in zip(films, films[1:])]
+    ratio = changes[-2] / changes[-1]
+    limit = films[-1] + changes[-1] / (ratio - 1)
+    return (f"3D liner's minimum film at the land's ends (5 mm, L/D = 1, 32 x m), m = {axial_grids}: "
+            + ", ".join(f"{f:.3f}" for f in films) + " um; changes " + ", ".join(f"{c:+.3f}" for c in changes)
+            + f" (last ratio {ratio:.2f}); extrapolated {limit:.3f} um, the finest grid {films[-1] / limit - 1:+.2%}")
 
 
 if __name__ == "__main__":
