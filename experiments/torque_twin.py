@@ -26,8 +26,9 @@ rigid pin R' = 9.9 mm in a 10 mm hole of the fitted material, F~ = 1e-2 and 2e-2
 or ``--scene journal`` (:func:`fitting.torque.journal_model`: an oil-lubricated finite journal
 bearing, R = 25 mm, c = 50 um, L = 50 mm, a 3 mm liner of the fitted polymer (Poisson's ratio
 JOURNAL_NU = 0.4, a thermoplastic's) turning on a fixed rigid shaft, an ISO VG 32 mineral oil
-(:func:`iso_vg32`), n x m = 32 x 8 film cells; 700-3000 rpm, 2.5 and 5 kN at 40 C, 1 and 2 kN at
-70 C (5e4-1e5 and 2e4-4e4 N/m in the CSV): eccentricities 0.37-0.92, minimum films 0.08-0.63 c,
+(:func:`fitting.torque.oil_viscosity` (32, 5.4): 0.0275 Pa s at 40 C, 0.0096 at 70 C),
+n x m = 32 x 8 film cells; 700-3000 rpm, 2.5 and 5 kN at 40 C, 1 and 2 kN at 70 C (5e4-1e5
+and 2e4-4e4 N/m in the CSV): eccentricities 0.37-0.92, minimum films 0.08-0.63 c,
 the liner's deformation up to 0.16 c, which lowers the torque 2-8 % below the rigid bearing's,
 its hysteresis at most 1 % of it; the quick run skips the gradient check, which
 tests/test_torque_journal.py makes). Outputs are ``torque_twin_<scene>_*`` (csv, png, json, txt).
@@ -37,7 +38,6 @@ Run: ``python -m experiments.torque_twin [--quick] [--scene pin|roller|journal]`
 from __future__ import annotations
 
 import argparse
-import math
 import time
 
 import numpy as np
@@ -68,18 +68,6 @@ def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0
 JOURNAL_NU = 0.4
 
 
-def iso_vg32(T):
-    """Dynamic viscosity (Pa s) of an ISO VG 32 mineral oil at ``T`` (C): Walther's equation
-    (ASTM D341), log log (nu + 0.7) linear in log T (K), through the grade's 32 cSt at 40 C and a
-    typical 5.4 cSt at 100 C (viscosity index about 100), times a density of 860 kg/m^3:
-    0.0275 Pa s at 40 C, 0.0096 at 70 C. Traceable in ``T``."""
-    import jax.numpy as jnp
-    z40, z100 = (math.log10(math.log10(v + 0.7)) for v in (32.0, 5.4))
-    b = (z40 - z100) / math.log10(373.15 / 313.15)
-    nu = 10.0 ** (10.0 ** (z40 - b * jnp.log10((T + 273.15) / 313.15))) - 0.7     # cSt
-    return 860.0 * 1e-6 * nu
-
-
 def _scene(name, quick):
     """(model, load per unit length of each (T, load) condition after the first two, speeds
     (rpm), (lowest, highest) patch speed per shaft speed)."""
@@ -88,7 +76,7 @@ def _scene(name, quick):
         # oil films 0.08-0.6 c thick at the minimum: every solve converges at the truth, at the
         # start and with the moduli doubled (halved, the heaviest slowest point does not)
         L = 0.05
-        return (ft.journal_model(length=L, thickness=3e-3, viscosity=iso_vg32), None,
+        return (ft.journal_model(length=L, thickness=3e-3, viscosity=ft.oil_viscosity(32.0, 5.4)), None,
                 np.geomspace(700.0, 3000.0, 4 if quick else 6), (1.0, 1.0),
                 [(40.0, 2500.0 / L), (70.0, 1000.0 / L), (40.0, 5000.0 / L), (70.0, 2000.0 / L)])
     speeds = np.geomspace(100.0, 3000.0, 4 if quick else 6)

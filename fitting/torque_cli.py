@@ -54,6 +54,9 @@ def _parser():
     g.add_argument("--thickness", type=float, default=0.01, help="liner thickness (m, default 0.01)")
     g.add_argument("--viscosity", type=float, default=None,
                    help="lubricant viscosity (Pa s), held fixed (default: water's, by temperature)")
+    g.add_argument("--oil", default=None, metavar="NU40,NU100[,DENSITY]",
+                   help="a mineral oil instead, by temperature: its kinematic viscosities at 40 and 100 C (cSt) "
+                        "and density (kg/m^3, default 860), Walther's equation (e.g. ISO VG 32: --oil 32,5.4)")
     g.add_argument("--turning", choices=["liner", "shaft"], default="liner",
                    help="the side turning at speed_rpm (default liner: the lined housing on a fixed shaft; "
                         "shaft: the torque then identifies E0 only)")
@@ -79,13 +82,31 @@ def _model(args):
         return ft.roller_model(args.R_outer, args.R_inner, args.roller_diameter, args.rollers,
                                n=args.n or 256, diametral_clearance=args.diametral_clearance)
     if args.scene == "journal":
+        viscosity = args.viscosity or (ft.oil_viscosity(*_oil(args.oil)) if args.oil else ft.water_viscosity)
         return ft.journal_model(args.R or 0.025, args.radial_clearance or 5e-5, args.length, args.thickness,
-                                args.viscosity or ft.water_viscosity, args.turning, n=args.n or 32, m=args.m)
+                                viscosity, args.turning, n=args.n or 32, m=args.m)
     return ft.pin_model(args.R or 0.01, args.radial_clearance or 1e-4, n=args.n or 128)
+
+
+def _oil(text):
+    """--oil's numbers (nu40, nu100[, density]); ValueError if they are not 2 or 3 numbers."""
+    values = [float(v) for v in text.split(",")]
+    if len(values) not in (2, 3):
+        raise ValueError
+    return values
 
 
 def _check_args(args):
     """The first problem with the numeric arguments, or None."""
+    if args.oil is not None:
+        if args.viscosity is not None:
+            return "--oil and --viscosity both give the lubricant's viscosity: give one"
+        try:
+            values = _oil(args.oil)
+        except ValueError:
+            return f"--oil must be NU40,NU100[,DENSITY] (cSt, cSt, kg/m^3), got {args.oil!r}"
+        if not all(0 < v < float("inf") for v in values) or not values[1] < values[0]:
+            return f"--oil: NU40 > NU100 > 0 and DENSITY > 0, finite, got {args.oil!r}"
     for name in ("steps", "polish"):
         if getattr(args, name) < 0:
             return f"--{name} must be >= 0, got {getattr(args, name)}"

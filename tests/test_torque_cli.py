@@ -62,7 +62,8 @@ def test_bad_inputs_fail_cleanly(files, tmp_path, capsys):
     assert main([str(data), "--material", str(arr), "--out", str(out), *GEOMETRY]) == 1
     assert "WLF" in capsys.readouterr().err
     for bad in (["--steps", "-1"], ["--lr", "0"], ["--rel-scatter", "0"], ["--n", "8"], ["--w-dma", "-1"],
-                ["--radial-clearance=-0.01"]):
+                ["--radial-clearance=-0.01"], ["--oil", "32"], ["--oil", "5.4,32"], ["--oil", "32,x"],
+                ["--oil", "32,5.4", "--viscosity", "0.03"]):
         assert main([str(data), "--material", str(start), "--out", str(out), *GEOMETRY, *bad]) == 2, bad
         assert bad[0].split("=")[0] in capsys.readouterr().err
     assert not out.exists()

@@ -30,6 +30,21 @@ def test_water_viscosity():
                                [1.0016e-3, 0.5465e-3, 0.2822e-3], rtol=0.03)
 
 
+def test_oil_viscosity():
+    """Walther's equation through the data sheet's two kinematic viscosities (cSt) times the
+    density: the anchors in Pa s, thinner when hotter (its derivative in T by jax.grad), and the
+    arguments checked."""
+    import jax
+    eta = ft.oil_viscosity(32.0, 5.4, 870.0)
+    np.testing.assert_allclose([eta(40.0), eta(100.0)], [870e-6 * 32.0, 870e-6 * 5.4], rtol=1e-12)
+    assert 870e-6 * 5.4 < eta(70.0) < 870e-6 * 32.0
+    assert float(jax.grad(eta)(60.0)) < 0
+    with pytest.raises(ValueError, match="nu100"):
+        ft.oil_viscosity(5.4, 32.0)
+    with pytest.raises(ValueError, match="density"):
+        ft.oil_viscosity(32.0, 5.4, density=0.0)
+
+
 def test_journal_torque_derivatives_vs_finite_differences():
     """One compiled residual Jacobian serves the derivatives and the finite differences (its
     residuals at x +- h e_i): the torque's derivative w.r.t. each log-parameter, from the
