@@ -1030,11 +1030,19 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, whirl=Non
     if at.ndim != 1:
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {at.shape}")
     checks.finite("whirl", at)
+    steady, _, K, C = _solved_coefficients("tilt_coefficients", R, radial_clearance, viscosity, load, length, at,
+                                           True, initial, throw, kw)
+    return (steady, K[0], C[0]) if whirl is None else (steady, K, C)
+
+
+def _solved_coefficients(caller, R, radial_clearance, viscosity, load, length, whirl, tilt, initial, throw, kw):
+    """The steady solve of the keyword arguments ``kw`` of :func:`finite_journal_bearing` and its
+    :func:`coefficients` (steady, Z, K, C); a failed whirl solve reported under ``caller``."""
     steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    _, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), at, tilt=True)
-    _solve.report("tilt_coefficients (the finite bearing's whirl solves)", stats, throw)
-    return (steady, K[0], C[0]) if whirl is None else (steady, K, C)
+    Z, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), whirl, tilt)
+    _solve.report(f"{caller} (the finite bearing's whirl solves)", stats, throw)
+    return steady, Z, K, C
 
 
 def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
@@ -1060,11 +1068,8 @@ def finite_coefficients(R, radial_clearance, viscosity, load, length, whirl, *, 
     absolute axes) at the whirl frequencies ``whirl`` (k,) for
     ``vjax.journal_coefficients(..., length=L)``; ``kw``: the keyword arguments of
     :func:`finite_journal_bearing` (rigid bodies and no "jfo" cavity: K, C independent of the whirl)."""
-    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
-    pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
-    Z, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), whirl)
-    _solve.report("journal_coefficients (the finite bearing's whirl solves)", stats, throw)
-    return steady, Z, K, C
+    return _solved_coefficients("journal_coefficients", R, radial_clearance, viscosity, load, length, whirl,
+                                False, initial, throw, kw)
 
 
 @partial(jax.jit, static_argnums=(2,))
