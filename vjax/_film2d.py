@@ -111,11 +111,16 @@ def conductance(f, R, z, eta):
     return (gx + gz[:, 1:] + gz[:, :-1]) / (12 * eta)
 
 
-def cell_equations(p_scaled, outflow, scale, cavitation, groove, supply):
+def cell_equations(p_scaled, outflow, scale, cavitation, groove, supply, couette_outflow=None, v=0.0, subcell=1.0):
     """Scaled cell equations (n, m - 1): the balance w / ``scale`` (``scale`` = conductance
     times p_ref, m^3/s) or, under Reynolds conditions, its Fischer-Burmeister complementarity
-    with the scaled pressure; ``groove`` cells (a 0/1 mask) hold the scaled ``supply`` pressure."""
+    with the scaled pressure; ``groove`` cells (a 0/1 mask) hold the scaled ``supply`` pressure.
+    ``couette_outflow`` (n, m - 1) (m^3/s): the cells' net Couette outflow at entrainment speed
+    ``v``; under Reynolds conditions each axial line's rupture is then located within its cell
+    as in 1D (:func:`vjax.reynolds.rupture_outflow`, along theta), times ``subcell``."""
     w = outflow / scale
+    if cavitation == "reynolds" and couette_outflow is not None:
+        w = w - subcell * reynolds.rupture_outflow(p_scaled, couette_outflow / scale, v)
     r = reynolds.fischer_burmeister(p_scaled, w) if cavitation == "reynolds" else w
     return jnp.where(groove > 0, p_scaled - supply, r)
 

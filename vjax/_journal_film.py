@@ -126,11 +126,14 @@ def fields(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
                 fraction=fraction)
 
 
-def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
-    """Cell balances (with cavitation), the groove datum and the load balance; and min film."""
+def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None, subcell=1.0):
+    """Cell balances (with cavitation), the groove datum and the load balance; and min film.
+    ``subcell``: 1 locates a Reynolds rupture within its cell, 0 on a face (:func:`newton`'s
+    first stage)."""
     n = x.shape[0] - 2
     f = fields(x, pr, cfg, smoothing, deformation)
-    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation)
+    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation, couette=pr.v * f["hf"], v=pr.v,
+                                subcell=subcell)
     r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
     Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
     Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
@@ -150,27 +153,37 @@ def effective_eps(h, c, offset=0.0):
 
 def newton(x0, pr, cfg, smoothing=0.0):
     """The core's Newton on the equations (films must stay positive): x, Stats (with the
-    physical branch folded into the result)."""
-    def fn(x, state):
-        r, hmin = equations(x, pr, cfg, smoothing)
-        return r, state, hmin > 0
-
+    physical branch folded into the result). Under Reynolds conditions in two stages: the
+    rupture on a face, then within its cell from there (a few steps; from a cold start the
+    sub-cell rupture's square root makes Newton creep)."""
     n = x0.shape[0] - 2
     # a trust cap on the two geometric unknowns (eps, attitude)
     cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    linear_solve = None
-    if cfg.options.krylov:
-        def linear_solve(x, state, r):
-            solve, _, matvec, _ = linear_model(x, pr, cfg, smoothing)
-            return gmres(matvec, solve)(-r)
-    x, _, stats = _solve.newton(fn, x0, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
-                                linear_solve=linear_solve)
+
+    def stage(x, subcell):
+        def fn(x, state):
+            r, hmin = equations(x, pr, cfg, smoothing, subcell=subcell)
+            return r, state, hmin > 0
+
+        linear_solve = None
+        if cfg.options.krylov:
+            def linear_solve(x, state, r):
+                solve, _, matvec, _ = linear_model(x, pr, cfg, smoothing, subcell)
+                return gmres(matvec, solve)(-r)
+        x, _, stats = _solve.newton(fn, x, None, tol=cfg.tol, max_iter=cfg.options.max_iter, max_step=cap,
+                                    linear_solve=linear_solve)
+        return x, stats
+
+    if cfg.cavitation == "reynolds":
+        x, stats = _solve.in_turn(stage, x0, (0.0, 1.0))
+    else:
+        x, stats = stage(x0, 1.0)
     physical = effective_eps(fields(x, pr, cfg)["h"], pr.c, offset(x, cfg)) > 0
     result = jnp.where((stats.result == _solve.SUCCESS) & ~physical, _solve.NONPHYSICAL, stats.result)
     return x, _solve.Stats(stats.iterations, stats.residual, result)
 
 
-def linear_model(x, pr: Params, cfg: Config, smoothing=0.0):
+def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
     """The Newton system at x, matrix-free: ``(solve, solve_transpose, matvec, matvec_transpose)``,
     the solves those of a preconditioner M ~ J, O(n k) per application.
 
@@ -185,9 +198,9 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0):
     N, dtype = n + 2, x.dtype
     f = fields(x, pr, cfg, smoothing)
     deformation = f["uB"] + f["uJ"]
-    cells = lambda u, U: equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U)[0][:n]
+    cells = lambda u, U: equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U, subcell)[0][:n]
     lower, diag, upper = _banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
-    full = lambda y: equations(y, pr, cfg, smoothing)[0]
+    full = lambda y: equations(y, pr, cfg, smoothing, subcell=subcell)[0]
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
     unit = jnp.eye(N, dtype=dtype)

@@ -234,6 +234,27 @@ def homotopy(solve, x0, schedule):
     return x, Stats(its, st.residual, st.result)
 
 
+def in_turn(solve, x0, schedule):
+    """``solve(x, t) -> (x, Stats)`` at each t of ``schedule`` in turn, each from the last
+    one's solution (the first from x0), stopping at the first that fails. One loop with one
+    solve in it: compiled once, t traced. Returns (x, Stats of the last turn with the
+    iterations of all)."""
+    schedule = jnp.asarray(schedule, x0.dtype)
+
+    def cond(s):
+        i, _, _, st = s
+        return (i < schedule.shape[0]) & ((i == 0) | st.converged)
+
+    def body(s):
+        i, x, its, _ = s
+        x1, st = solve(x, schedule[i])
+        return i + 1, x1, its + st.iterations, st
+
+    init = Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(MAX_ITERATIONS))
+    _, x, its, st = jax.lax.while_loop(cond, body, (jnp.asarray(0), x0, jnp.asarray(0), init))
+    return x, Stats(its, st.residual, st.result)
+
+
 def continuation(solve, guess, x0=None, max_stages=40, end=2.0):
     """Adaptive continuation in a parameter t from 0 to ``end``: ``solve(x, t) -> (x, Stats)``,
     the first stage (t = 0) from ``guess``, each later one from the last converged solution; a

@@ -185,11 +185,11 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: f
         hdot = -motion[2] * cos + Udot
         v = pr.v - pr.R * motion[3] / (x0[n] * pr.c)
     jfo = cfg.cavitation == "jfo"
-    _, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v, fraction if jfo else None)
+    hf, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v, fraction if jfo else None)
     # the film's own growth R d(h f)/dt, f the liquid fraction (1 but in a "jfo" cavity)
     fraction_rate = jnp.where(pz < 0, pzdot, 0.0) if jfo else 0.0
     squeeze = pr.R * (hdot * fraction + h * fraction_rate)
-    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze)
+    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze, couette=v * hf, v=v)
     r = r.at[pr.groove].set(pz[pr.groove] - pr.ps / pr.p_ref)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
     F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * cos), jnp.sum(p_load * sin)])

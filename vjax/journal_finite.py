@@ -345,10 +345,13 @@ def deformations(p_load, pr: Params, z):
     return deform(pr.op_B), deform(pr.op_J)
 
 
-def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None):
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None,
+                  subcell=1.0):
     """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes);
     the arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
-    unknowns, with which a "jfo" cavity's liquid fraction changes (the dynamic coefficients)."""
+    unknowns, with which a "jfo" cavity's liquid fraction changes (the dynamic coefficients);
+    ``subcell``: 1 locates a Reynolds rupture within its cell, 0 on a face (the solver's first
+    stages)."""
     f = fields(x, pr, cfg, motion, relaxed, deformation)
     out = _film2d.net_outflow(f, pr.R, f["z"])
     dth = 2 * jnp.pi / cfg.n
@@ -358,7 +361,10 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
         growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, _interior(rate, cfg), 0.0)
     out = out + pr.R * dth * _film2d.node_widths(f["z"])[None, 1:-1] * growth
     scale = _film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
-    r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+    couette = pr.v * f["hx"][:, 1:-1]
+    couette_out = (couette - jnp.roll(couette, 1, axis=0)) * _film2d.node_widths(f["z"])[None, 1:-1]
+    r = _film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref,
+                               couette_out, pr.v, subcell)
     if cfg.cavitation == "reynolds" and relaxed is not False:
         sommerfeld = _film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
         r = jnp.where(relaxed, sommerfeld, r)
@@ -366,9 +372,9 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
     return _own_columns(r, cfg).ravel(), F, jnp.min(f["h"])
 
 
-def equations(x, pr: Params, cfg: Config, relaxed=False):
+def equations(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
-    r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed)
+    r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed, subcell=subcell)
     return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
 
 
@@ -430,7 +436,7 @@ def own_compliance(pr: Params, cfg: Config):
     return pr.compliance * u[0, m // 2]
 
 
-def linear_model(x, pr: Params, cfg: Config, relaxed=False):
+def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     """``(solve, solve_transpose)`` of the Newton system at x. The cell equations' Jacobian in
     the pressures, the film's deformation held, is block tridiagonal (a ring of n blocks of
     m - 1 cells across the width, cyclic), bordered by the two position columns and force rows
@@ -447,16 +453,17 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False):
     N = _unknowns(cfg)
     rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
     if _rigid(pr):
-        cells = lambda pz: cell_residual(rest(pz), pr, cfg, relaxed=relaxed)[0]     # noqa: E731
+        cells = lambda pz: cell_residual(rest(pz), pr, cfg, relaxed=relaxed, subcell=subcell)[0]     # noqa: E731
     else:
         f0 = fields(x, pr, cfg, relaxed=relaxed)
         U0, load0, own = f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg)
 
         def cells(pz):
             U = U0 + own.real * (_loading(_interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
-            return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)))[0]
+            return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)),
+                                 subcell=subcell)[0]
     C = _blocks.stencil(cells, x[:N], n, _columns(cfg))
-    full = lambda y: equations(y, pr, cfg, relaxed)[0]     # noqa: E731
+    full = lambda y: equations(y, pr, cfg, relaxed, subcell)[0]     # noqa: E731
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
     unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
@@ -501,18 +508,18 @@ def _solved_by_linear_model(pr: Params, cfg: Config):
 STALL_WINDOW = 12
 
 
-def _newton(x0, pr: Params, cfg: Config, relaxed=False):
+def _newton(x0, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     """The core's Newton; each step by the block solve for rigid bodies; with deformable ones,
     whose compliance couples every cell of an axial slice, by GMRES (``cfg.krylov``,
     :func:`linear_model`) or a dense LU of the Jacobian from jacfwd (n (m - 1) + 2 unknowns:
     up to a few thousand)."""
     def eqs(x, state):
-        r, hmin = equations(x, pr, cfg, relaxed)
+        r, hmin = equations(x, pr, cfg, relaxed, subcell)
         return r, state, hmin > 0
 
     N = _unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
-    linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed)[0](-r)) \
+    linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed, subcell)[0](-r)) \
         if _solved_by_linear_model(pr, cfg) else None
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
                                 linear_solve=linear_solve, stall_window=STALL_WINDOW)
@@ -581,8 +588,10 @@ def _film_steady(pr: Params, cfg: Config):
     """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
     stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
     solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
-    raised by 0.1 p_ref. The stages run through one Newton (compiled once), the relaxation a
-    traced switch."""
+    raised by 0.1 p_ref; these with the rupture on a cell face, then a last Newton from there
+    with the rupture within its cell (a few steps; from a cold start the sub-cell rupture's
+    square root makes Newton creep). The stages run through one Newton (compiled once), the
+    relaxation and the sub-cell rupture traced switches."""
     x0 = jax.lax.stop_gradient(pr.x0)
     if cfg.cavitation == "jfo":
         return _jfo_steady(pr, cfg)
@@ -590,22 +599,21 @@ def _film_steady(pr: Params, cfg: Config):
         return _newton(x0, pr, cfg)
     N = _unknowns(cfg)
     held = _own_columns(pr.groove[:, 1:-1], cfg).ravel() > 0
-
-    def cond(c):
-        k, _, _, st = c
-        return (k == 0) | ((k == 1) & ~st.converged) | ((k == 2) & st.converged)
+    # stages: 0 from x0, 1 half-Sommerfeld from x0 (if 0 failed), 2 from its solution, 3 the
+    # rupture within its cell (after 0 or 2 converged), 4 done
+    after = jnp.array([[1, 3], [4, 2], [4, 3], [4, 4]])     # [stage, converged] -> next stage
 
     def body(c):
         k, x, its, _ = c
         relaxed = k == 1
-        x1, st = _newton(jnp.where(relaxed, x0, x), pr, cfg, relaxed)
+        x1, st = _newton(jnp.where(relaxed, x0, x), pr, cfg, relaxed, (k == 3).astype(x0.dtype))
         # after the half-Sommerfeld stage: its pressure, clipped and raised, starts Reynolds
         start = x1.at[:N].set(jnp.where(held, x1[:N], jnp.maximum(x1[:N], 0.0) + 0.1))
-        return k + 1, jnp.where(relaxed, start, x1), its + st.iterations, st
+        return after[k, st.converged.astype(int)], jnp.where(relaxed, start, x1), its + st.iterations, st
 
     init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    k, x, its, st = jax.lax.while_loop(cond, body, (0, x0, jnp.asarray(0), init))
-    # a failed half-Sommerfeld stage ends the solve with its own code
+    k, x, its, st = jax.lax.while_loop(lambda c: c[0] < 4, body, (0, x0, jnp.asarray(0), init))
+    # a failed stage ends the solve with its own code
     return x, _solve.Stats(its, st.residual, st.result)
 
 

@@ -10,7 +10,11 @@ A cell's net outflow w = q_out - q_in is its mass balance. Cavitation (``cavitat
   the linear complementarity p >= 0, w >= 0, p w = 0 (a cavitated cell may lose flow, a
   pressurized one conserves it), written as the Fischer-Burmeister equation
   p + w - sqrt(p^2 + w^2) = 0: semismooth, so Newton with an AD Jacobian works and the
-  solution is differentiable where the cavitated set does not change.
+  solution is differentiable where the cavitated set does not change. The rupture is
+  located within its cell (w shifted by :func:`rupture_outflow`, the outflow the exact
+  profile p ~ (theta_b - theta)^2 leaves the cell that holds it): the solution is then C^1
+  in the parameters and the dynamic coefficients (its derivatives) converge steadily with
+  the grid, where a rupture held on a face makes them scatter by O(dtheta).
 - ``"jfo"``: Jakobsson-Floberg-Olsson / Elrod-Adams conditions, which conserve mass. Each
   cell holds a pressure p >= 0 and a liquid film fraction 0 <= f <= 1 with p (1 - f) = 0;
   in a cavity the film is striated and carries the Couette flow of its liquid part only,
@@ -37,11 +41,15 @@ JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # the solvers' homotopy o
 
 
 def fischer_burmeister(a, b):
-    """a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0, a b = 0. Double where: at (0, 0)
-    the derivative is (1, 1), an element of its generalized Jacobian."""
+    """a + b - sqrt(a^2 + b^2): zero iff a >= 0, b >= 0, a b = 0. Where a + b > 0 it is
+    evaluated as 2 a b / (a + b + sqrt(a^2 + b^2)), which has no cancellation, so that its
+    derivative stays exact when one argument is tiny and the other's derivative is large.
+    Double where: at (0, 0) the derivative is (1, 1), an element of its generalized Jacobian."""
     s = a * a + b * b
     ok = s > 0
-    return a + b - jnp.where(ok, jnp.sqrt(jnp.where(ok, s, 1.0)), 0.0)
+    r = jnp.where(ok, jnp.sqrt(jnp.where(ok, s, 1.0)), 0.0)
+    plus = a + b > 0
+    return jnp.where(plus, 2 * a * b / jnp.where(plus, a + b + r, 1.0), a + b - r)
 
 
 def load_pressure(p, cavitation):
@@ -101,14 +109,49 @@ def face_fluxes(p, h, R, eta, v, fraction=None):
     return hf, dpds, -hf**3 * dpds / (12 * eta) + couette
 
 
-def cell_equations(p_scaled, q, q_ref, cavitation, squeeze=0.0):
+ROUND_OFF_PRESSURE = 1e-16   # p / p_ref: below it a pressure is round-off (a cavity's are ~1e-18)
+
+
+def rupture_outflow(p_scaled, couette_outflow, v, axis=0):
+    """The net outflow that the discrete balances give the cell holding a rupture, in the
+    units of ``couette_outflow`` (the cells' net Couette outflow, W): W (1 - beta)_+^2 / 2.
+
+    Near a Reynolds rupture at theta_b the pressure is p = A (theta_b - theta)^2 (p and dp/ds
+    vanish there), so sqrt(p) is linear and the last pressurized node i lies
+    beta = s_i / (s_{i-1} - s_i) cells upstream of it (s = sqrt(p), i - 1 the node upstream in
+    the flow). Sampling that profile, the standard fluxes leave cell i a net outflow of
+    W (1 - beta)^2 / 2 for 0 <= beta <= 1 (the cavitated part of its volume, beta < 1/2, and the
+    face gradient p_i / dtheta where the profile's is smaller), 0 for beta >= 1. The
+    complementarity p w = 0 would force that to 0, i.e. put the rupture on a face: an O(dtheta)
+    error in the flow that jumps as the rupture crosses cells, and first-order scatter in the
+    dynamic coefficients. Shifting w by this outflow locates the rupture within its cell; the
+    shift is C^1 in the pressures (so is the discrete solution in the parameters) and vanishes
+    where the pressure does not fall in the flow direction. ``axis``: the circumferential axis."""
+    upstream = jnp.where(v >= 0, jnp.roll(p_scaled, 1, axis=axis), jnp.roll(p_scaled, -1, axis=axis))
+    # sqrt(p + tau) - sqrt(tau): the root, but with a finite slope at p = 0, where a cavity's
+    # round-off pressures would otherwise give the Jacobian entries of 1e9 and more
+    root = lambda p: jnp.sqrt(jnp.maximum(p, 0.0) + ROUND_OFF_PRESSURE) - ROUND_OFF_PRESSURE**0.5     # noqa: E731
+    s, s_up = root(p_scaled), root(upstream)
+    falling = s_up > s
+    one_minus_beta = jnp.where(falling, (s_up - 2 * s) / jnp.where(falling, s_up - s, 1.0), 0.0)
+    return jnp.maximum(couette_outflow, 0.0) * jnp.maximum(one_minus_beta, 0.0) ** 2 / 2
+
+
+def cell_equations(p_scaled, q, q_ref, cavitation, squeeze=0.0, couette=None, v=0.0, subcell=1.0):
     """Mass balance of each cell, scaled to O(1) per unit angle; complementarity with the
     (scaled) pressure under Reynolds conditions. ``squeeze``: R dh/dt at the cell centres
     (m^2/s per radian), the film's own growth, which the net outflow must supply (the
-    unsteady term of d/ds(h^3/(12 eta) dp/ds) = v dh/ds + dh/dt)."""
+    unsteady term of d/ds(h^3/(12 eta) dp/ds) = v dh/ds + dh/dt). ``couette``: the faces'
+    Couette fluxes (m^2/s) at entrainment speed ``v``; under Reynolds conditions the rupture
+    is then located within its cell (:func:`rupture_outflow`), times ``subcell`` (0: on a
+    face, the solvers' first stage)."""
     dth = 2 * jnp.pi / q.shape[0]
     w = (q - jnp.roll(q, 1)) / (q_ref * dth) + squeeze / q_ref
-    return fischer_burmeister(p_scaled, w) if cavitation == "reynolds" else w
+    if cavitation != "reynolds":
+        return w
+    if couette is not None:
+        w = w - subcell * rupture_outflow(p_scaled, (couette - jnp.roll(couette, 1)) / (q_ref * dth), v)
+    return fischer_burmeister(p_scaled, w)
 
 
 def rupture_angle(p, theta, v, cavitation):
