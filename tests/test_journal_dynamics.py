@@ -79,14 +79,19 @@ def _force(X, Y, Xdot, Ydot, n):
     p_ref = 1e6
     q_ref = abs(V) * C
 
-    def eqs(pz, state):
-        _, _, q = reynolds.face_fluxes(pz * p_ref, h, R, ETA, V)
-        r = reynolds.cell_equations(pz, q, q_ref, "reynolds", squeeze=R * hdot)
-        return r.at[n // 2].set(pz[n // 2]), state, True
+    def eqs(subcell):
+        def residual(pz, state):
+            hf, _, q = reynolds.face_fluxes(pz * p_ref, h, R, ETA, V)
+            r = reynolds.cell_equations(pz, q, q_ref, "reynolds", squeeze=R * hdot, couette=V * hf, v=V,
+                                        subcell=subcell)
+            return r.at[n // 2].set(pz[n // 2]), state, True
+        return residual
 
     p0 = np.maximum(np.asarray(reference.long_bearing(e / C, R, C, ETA, V, "reynolds")["pressure"](theta)), 0.0)
-    pz, _, stats = _solve.newton(eqs, jnp.asarray(p0 / p_ref + 0.01), None, tol=1e-12, max_iter=60)
-    assert bool(stats.converged)
+    pz = jnp.asarray(p0 / p_ref + 0.01)
+    for subcell in (0.0, 1.0):     # the rupture on a face, then within its cell (as the solver)
+        pz, _, stats = _solve.newton(eqs(subcell), pz, None, tol=1e-12, max_iter=60)
+        assert bool(stats.converged)
     F = -R * 2 * alpha * p_ref * np.array([np.sum(pz * np.cos(theta)), np.sum(pz * np.sin(theta))])
     rot = np.array([[math.cos(g), -math.sin(g)], [math.sin(g), math.cos(g)]])
     return rot @ F
@@ -194,7 +199,9 @@ def test_stability_threshold_rigid():
     lam = np.linalg.eigvals(A)
     # at the threshold an eigenvalue sits on the imaginary axis at the whirl frequency
     assert np.min(np.abs(lam - 1j * th["whirl"])) < 1e-6 * th["whirl"]
-    assert 0.3 < th["whirl_ratio"] < 0.5      # oil whirl: a little under half the speed
+    # oil whirl at about half the speed: 0.50229 here, 0.50248 at n = 256 and 1024 (with the
+    # rupture on a cell face it scattered: 0.512, 0.495, 0.503 at n = 64, 128, 256)
+    assert 0.495 < th["whirl_ratio"] < 0.51
 
 
 def test_stability_threshold_frequency_dependent():

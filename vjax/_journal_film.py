@@ -175,7 +175,9 @@ def newton(x0, pr, cfg, smoothing=0.0):
         return x, stats
 
     if cfg.cavitation == "reynolds":
-        x, stats = _solve.in_turn(stage, x0, (0.0, 1.0))
+        # a warm start (a solution nearby) goes straight to the second stage
+        warm = jnp.max(jnp.abs(equations(x0, pr, cfg, smoothing)[0])) < reynolds.WARM_RESIDUAL
+        x, stats = _solve.in_turn(stage, x0, jnp.stack([jnp.where(warm, 1.0, 0.0), 1.0]).astype(x0.dtype))
     else:
         x, stats = stage(x0, 1.0)
     physical = effective_eps(fields(x, pr, cfg)["h"], pr.c, offset(x, cfg)) > 0

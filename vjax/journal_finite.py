@@ -612,7 +612,9 @@ def _film_steady(pr: Params, cfg: Config):
         return after[k, st.converged.astype(int)], jnp.where(relaxed, start, x1), its + st.iterations, st
 
     init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
-    k, x, its, st = jax.lax.while_loop(lambda c: c[0] < 4, body, (0, x0, jnp.asarray(0), init))
+    # a warm start (a solution nearby) goes straight to stage 3
+    warm = jnp.max(jnp.abs(equations(x0, pr, cfg)[0])) < reynolds.WARM_RESIDUAL
+    k, x, its, st = jax.lax.while_loop(lambda c: c[0] < 4, body, (jnp.where(warm, 3, 0), x0, jnp.asarray(0), init))
     # a failed stage ends the solve with its own code
     return x, _solve.Stats(its, st.residual, st.result)
 

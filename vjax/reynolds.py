@@ -109,6 +109,10 @@ def face_fluxes(p, h, R, eta, v, fraction=None):
     return hf, dpds, -hf**3 * dpds / (12 * eta) + couette
 
 
+# The solvers find a Reynolds film in two stages, the rupture on a face, then within its cell
+# from there (a few steps; from a cold start the sub-cell rupture's square root makes Newton
+# creep); a start whose equations are already below this (max-norm) skips the first stage.
+WARM_RESIDUAL = 1e-3
 ROUND_OFF_PRESSURE = 1e-16   # p / p_ref: below it a pressure is round-off (a cavity's are ~1e-18)
 
 
