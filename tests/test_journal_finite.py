@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import FiniteJournalOptions, JournalOptions, journal_bearing, journal_finite, reference
+from vjax import FiniteJournalOptions, JournalOptions, _film2d, journal_bearing, journal_finite, reference
 
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 V = 0.5 * WJ * (R - C)
@@ -165,13 +165,19 @@ def test_ross_cross_check():
 
 # ---------------------------------------------------------------- balances, outputs
 def test_power_balance_and_outputs():
-    """-omega_J torque_shaft + p_s Q_s = power loss (exact for the discrete equations);
-    force = load; the minimum film where h is smallest; side leakage <= the inlet flow;
-    torques: the Couette parts equal and opposite up to R_J/R, the Poiseuille parts alike."""
+    """-omega_J torque_shaft + p_s Q_s + the pressure energy of the flow let out within the
+    rupture's cells = power loss (exact for the discrete equations); force = load; the minimum
+    film where h is smallest; side leakage <= the inlet flow; torques: the Couette parts equal
+    and opposite up to R_J/R, the Poiseuille parts alike."""
     W = 0.5 * long_load(0.5) * D
     s = finite(W, 1.0, supply_pressure=1e4)
     power = -WJ * float(s.torque_shaft) + 1e4 * float(s.supply_flow)
-    assert power == pytest.approx(float(s.power_loss), rel=1e-9)
+    p, z = np.asarray(s.pressure), np.asarray(s.z)
+    outflow = np.asarray(_film2d.net_outflow(_film2d.fluxes(s.pressure, s.film, R, s.z, ETA, V), R, s.z))
+    groove = np.all(np.abs(p[:, 1:-1] - 1e4) < 1e-8, axis=1)
+    work = float(np.sum(p[~groove, 1:-1] * outflow[~groove]))
+    assert 0 < work < 1e-5 * power
+    assert power + work == pytest.approx(float(s.power_loss), rel=1e-12)
     assert np.allclose(np.asarray(s.force), [0.0, -W], atol=1e-8 * W)
     h = np.asarray(s.film)
     assert float(s.min_film) == h.min()
@@ -282,9 +288,12 @@ def test_coefficients_static_stiffness(tilted):
     assert np.allclose(np.asarray(co.stiffness[0]), np.asarray(co.stiffness[1]), rtol=1e-14)
     K = np.linalg.inv(J[4:, 2:])
     assert np.max(np.abs(np.asarray(co.stiffness[0]) - K)) < 1e-7 * np.abs(K).max()
-    # a rigid film's damping is symmetric
+    # a rigid film's damping is symmetric (the moving rupture's too, Dirichlet at the rupture:
+    # vjax.reference.long_bearing_coefficients); the rupture within its cell breaks the
+    # discrete symmetry by an error that vanishes with the grid (9.1e-4 of the largest entry
+    # here on 48 x 32; in the benchmark's case 1.2e-4, 4.1e-5, 8.8e-6 on 128 x 32 ... 512 x 128)
     Cd = np.asarray(co.damping[0])
-    assert abs(Cd[0, 1] - Cd[1, 0]) < 1e-9 * np.abs(Cd).max()
+    assert abs(Cd[0, 1] - Cd[1, 0]) < 2e-3 * np.abs(Cd).max()
 
 
 def test_tilt_coefficients_are_the_static_stiffness_in_position_and_tilt(tilted):
@@ -294,7 +303,8 @@ def test_tilt_coefficients_are_the_static_stiffness_in_position_and_tilt(tilted)
     largest entry); its force-position block is journal_coefficients' K and C (1e-10). The
     damping is reciprocal: in the forces conjugate to (X, Y, gamma_x, gamma_y), which are
     (F_x, F_y, M_y, -M_x) (gamma_x turns the journal about y, gamma_y about -x), C is
-    symmetric (measured 5e-17; 2e-3 in the raw (M_x, M_y) order, so the test can fail)."""
+    symmetric up to the rupture within its cell (measured 9.1e-4 on this grid, the same as
+    the 2 x 2 block's; 5e-17 with the rupture on a face)."""
     q, _, co = tilted
     load = jnp.asarray(q[2:])
     steady, K, Cd = journal_finite.tilt_coefficients(R, C, ETA, load, D, omega_shaft=WJ, tilt=GAMMA, options=OPT)
@@ -315,7 +325,7 @@ def test_tilt_coefficients_are_the_static_stiffness_in_position_and_tilt(tilted)
     for name, block in computed.items():
         assert np.max(np.abs(block - predicted[name])) < 1e-7 * np.abs(block).max(), name
     conjugate = np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 0, 1], [0, 0, -1, 0]], float) @ np.asarray(Cd)
-    assert np.max(np.abs(conjugate - conjugate.T)) < 1e-12 * np.abs(conjugate).max()
+    assert np.max(np.abs(conjugate - conjugate.T)) < 1.2e-3 * np.abs(conjugate).max()
     with pytest.raises(ValueError, match="cavitation"):
         journal_finite.tilt_coefficients(R, C, ETA, load, D, omega_shaft=WJ, cavitation="jfo", options=OPT)
 

@@ -255,28 +255,49 @@ def long_bearing(eps, R, radial_clearance, viscosity, speed, conditions: str = "
         return dict(load=scale * half_sommerfeld_load(eps),
                     attitude=jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps), rupture=jnp.asarray(0.0),
                     pressure=lambda theta: jnp.maximum(p_full(jnp.angle(jnp.exp(1j * theta))), 0.0))
+    t2, pressure_over_B, Fx, Fy = _reynolds_film(eps, 0.0, 2 * v / R, n_quad)
+    B = 6 * eta * R**3 / c**2
+
+    def pressure(theta):
+        theta = jnp.angle(jnp.exp(1j * jnp.asarray(theta, dtype=float)))
+        return jnp.where(theta < t2, B / R * pressure_over_B(theta), 0.0)
+    return dict(load=B * jnp.hypot(Fx, Fy), attitude=jnp.arctan2(Fy, -Fx), rupture=t2, pressure=pressure)
+
+
+def _reynolds_film(eps, eps_dot, omega_e, n_quad=2000):
+    """The long bearing's film under Reynolds conditions with a squeeze: film c (1 - eps cos theta)
+    in the frame of the line of centres, its rate -c eps_dot cos theta, effective angular speed
+    omega_e = 2 (v / R - gamma') (rad/s), p = 0 at the groove theta = -pi. Integrating Reynolds'
+    equation once from the rupture theta_2, where p = dp/dtheta = 0,
+
+        dp/dtheta = (6 eta R^2 / c^2) [omega_e (H - H_2) - 2 eps_dot (sin theta - sin theta_2)] / H^3,
+
+    H = 1 - eps cos theta, and theta_2 in (0, pi) is the root of p(theta_2) = 0 (bisection, then
+    one Newton step from it, through which the derivatives in eps, eps_dot and omega_e flow:
+    those of the implicit root). Gauss-Legendre quadrature with ``n_quad`` points. Returns
+    (theta_2, theta -> p R / B, F_x / B, F_y / B) with B = 6 eta R^3 / c^2 and F the force on the
+    journal along the line of centres and 90 degrees ahead of it."""
     x, w = _gauss_legendre(n_quad)
-    h = lambda t: c * (1 - eps * jnp.cos(t))
+    H = lambda t: 1 - eps * jnp.cos(t)     # noqa: E731
 
     def integral(f, lo, hi):
         t = 0.5 * (hi - lo)[..., None] * x + 0.5 * (hi + lo)[..., None]
         return 0.5 * (hi - lo) * jnp.sum(w * f(t), axis=-1)
 
     def p_at(theta, t2):
-        return 12 * eta * R * v * integral(lambda s: (h(s) - h(t2)[..., None]) / h(s) ** 3, -jnp.pi, theta)
+        t2 = t2[..., None]
+        return integral(lambda s: (omega_e * (H(s) - H(t2)) - 2 * eps_dot * (jnp.sin(s) - jnp.sin(t2))) / H(s) ** 3,
+                        -jnp.pi, theta)
 
-    t2 = bisect(lambda t: p_at(t, t), jnp.asarray(1e-6), jnp.asarray(jnp.pi - 1e-6), 60)
+    at_itself = lambda t: p_at(t, t)     # noqa: E731
+    t2 = jax.lax.stop_gradient(bisect(at_itself, jnp.asarray(1e-6), jnp.asarray(jnp.pi - 1e-6), 60))
+    t2 = t2 - at_itself(t2) / jax.grad(at_itself)(t2)
     # forces of the pressure on the journal, by the same quadrature (p = 0 past theta_2)
     th = 0.5 * (t2 + jnp.pi) * x + 0.5 * (t2 - jnp.pi)           # nodes on (-pi, theta_2)
-    p_nodes = p_at(th, t2)
+    p_nodes = p_at(th, jnp.broadcast_to(t2, th.shape))
     weight = 0.5 * (t2 + jnp.pi) * w
-    Fx = -R * jnp.sum(weight * p_nodes * jnp.cos(th))
-    Fy = -R * jnp.sum(weight * p_nodes * jnp.sin(th))
-
-    def pressure(theta):
-        theta = jnp.angle(jnp.exp(1j * jnp.asarray(theta, dtype=float)))
-        return jnp.where(theta < t2, p_at(theta, t2), 0.0)
-    return dict(load=jnp.hypot(Fx, Fy), attitude=jnp.arctan2(Fy, -Fx), rupture=t2, pressure=pressure)
+    return (t2, lambda theta: p_at(theta, jnp.broadcast_to(t2, jnp.shape(theta))),
+            -jnp.sum(weight * p_nodes * jnp.cos(th)), -jnp.sum(weight * p_nodes * jnp.sin(th)))
 
 
 def _long_bearing_forces(eps, eps_dot, omega_e, conditions):
@@ -285,6 +306,8 @@ def _long_bearing_forces(eps, eps_dot, omega_e, conditions):
     angular speed omega_e = 2 (v / R - gamma') (rad/s), gamma' the whirl rate of the line of
     centres; lubricant at zero pressure at theta = pi of the moving line of centres."""
     beta = jnp.sqrt(1 - eps**2)
+    if conditions == "reynolds":
+        return jnp.stack(_reynolds_film(eps, eps_dot, omega_e)[2:])
     if conditions == "sommerfeld":      # full film: the integrals over the whole circle
         return jnp.stack([-eps_dot * 2 * jnp.pi / beta**3,
                           omega_e * 2 * jnp.pi * eps / ((2 + eps**2) * beta)])
@@ -296,7 +319,8 @@ def _long_bearing_forces(eps, eps_dot, omega_e, conditions):
 
 def long_bearing_coefficients(eps, R, radial_clearance, viscosity, speed, conditions: str = "half_sommerfeld"):
     """Stiffness K (N/m^2) and damping C (N s/m^2) per unit length of the rigid infinitely long
-    bearing of :func:`long_bearing` ("sommerfeld" or "half_sommerfeld": the pi film), in the
+    bearing of :func:`long_bearing` ("sommerfeld", "half_sommerfeld": the pi film, or
+    "reynolds": the film of :func:`_reynolds_film`, its rupture moving with the motion), in the
     line-of-centres frame (X from the bore's centre to the journal's, Y 90 degrees ahead),
     convention dF = -(K dx + C dx/dt) for the film force F on the journal.
 
@@ -313,7 +337,7 @@ def long_bearing_coefficients(eps, R, radial_clearance, viscosity, speed, condit
     C_YX = -dF_t/deps' / c, C_XY = 2 dF_r/domega_e / (eps c), C_YY = 2 dF_t/domega_e / (eps c)
     (derivatives of the closed forms, taken by JAX).
     """
-    checks.one_of("conditions", conditions, ("sommerfeld", "half_sommerfeld"))
+    checks.one_of("conditions", conditions, CONDITIONS)
     _scalars_positive(R=R, radial_clearance=radial_clearance, viscosity=viscosity, speed=speed)
     e = checks.values("eps", eps)
     if e is not None and not (0 < e < 1):
