@@ -12,8 +12,10 @@ a polymer liner for grids from 64 x 16 to 1024 x 256, against the exact block so
 dense LU in the same run (the baseline), and the dynamic
 coefficients at 16 whirl frequencies, rigid and lined (compile apart; the machine's load
 average next to them), and the lined bearing's whirl solves alone from 32 x 8 to 256 x 64
-(matrix-free GMRES against the dense complex LU in the same run); a grid study of the rigid bearing's K and C from 32 x 8 to 256 x 64. Case: R = 50 mm,
-c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
+(matrix-free GMRES against the dense complex LU in the same run); a grid study of the rigid
+bearing's K and C from 32 x 8 to 512 x 128 at L/D = 0.5 and 1, eps about 0.3 to 0.7
+(``--grid-study``: that section alone, ``journal_finite_grid.txt`` and ``.png``). Case:
+R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 
 ROSS: if the environment variable ``VJAX_ROSS_PYTHON`` names a Python interpreter with ROSS 3.x
 (``ross-rotordynamics``; it needs Python >= 3.13, so a side venv), the rigid point of the timings
@@ -75,6 +77,54 @@ def ross_lines(load, eccentricity, attitude_deg, grid, ross_grids=((256, 64), (4
                      f"(vjax {attitude_deg:.2f})"
                      + ("" if r["mesh_ok"] else f"; h_min/ny {r['hmin_over_ny_um']:.2f} um < 1 um: ROSS unreliable"))
     return head + lines
+
+
+def grid_study(out, quick=False):
+    """Grid convergence of the rigid finite bearing's K and C under Reynolds conditions, the
+    groove fixed at the maximum film (found by two passes on the coarsest grid, then held for
+    every grid: one bearing), L/D = 0.5 and 1, the load that puts the long bearing at eps 0.3
+    and 0.7, times L / 4; grids 32 x 8 ... 512 x 128 (64 x 16 quick). Each 2 x 2 matrix over its
+    largest entry; the change is the largest from the grid before. Returns the text's lines
+    and writes ``journal_finite_grid.png`` (change against grid)."""
+    import matplotlib.pyplot as plt
+    grids = [(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64), (512, 128)]
+    lines = ["Grid study of K and C (rigid, Reynolds, the rupture within its cell, groove fixed at the maximum "
+             "film; each 2 x 2 matrix over its largest entry): the largest change from the grid before"]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for LD, eps in ((1.0, 0.3), (1.0, 0.7), (0.5, 0.3), (0.5, 0.7)):
+        L = LD * D
+        W = float(reference.long_bearing(eps, R, C, ETA, V, "reynolds")["load"]) * L / 4
+        phi = 0.6
+        for _ in range(2):          # the groove at the maximum film: opposite the line of centres
+            phi = float(vjax.journal_bearing(R, C, ETA, W, omega_shaft=WJ, length=L, supply_angle=np.pi + phi,
+                                             options=FiniteJournalOptions(n=32, m=8)).attitude_angle)
+        previous, changes = None, []
+        for n, m in grids:
+            t = time.perf_counter()
+            co = vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=WJ, length=L, supply_angle=np.pi + phi,
+                                           options=FiniteJournalOptions(n=n, m=m, max_iter=100))
+            K, Cd = (np.asarray(a).reshape(2, 2) for a in (co.stiffness, co.damping))
+            scaled = np.concatenate([K.ravel() / np.abs(K).max(), Cd.ravel() / np.abs(Cd).max()])
+            change = ""
+            if previous is not None:
+                changes.append(np.max(np.abs(scaled - previous)))
+                change = f", change {changes[-1]:.2e}"
+            lines.append(f"L/D {LD}, eps {float(co.steady.eccentricity):.3f}, {n}x{m}: K (MN/m) "
+                         f"{np.array2string(K.ravel() / 1e6, precision=3)}, C (kN s/m) "
+                         f"{np.array2string(Cd.ravel() / 1e3, precision=2)}{change} "
+                         f"({time.perf_counter() - t:.1f} s)")
+            print(lines[-1], flush=True)
+            previous = scaled
+        ax.loglog([n for n, _ in grids[1:]], changes, "o-", label=f"L/D {LD}, long-bearing eps {eps}")
+    ax.axhline(3e-3, color="0.5", ls="--", label="0.3 %")
+    ax.set_xlabel("n (cells in theta; m = n / 4 across)")
+    ax.set_ylabel("largest change of K, C from the grid before")
+    ax.set_title("Finite bearing, Reynolds: K and C against the grid")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    _common.save_figure(fig, out / "journal_finite_grid.png")
+    plt.close(fig)
+    return lines
 
 
 def main(out_dir="experiments/out", quick=False):
@@ -182,18 +232,7 @@ def main(out_dir="experiments/out", quick=False):
     lines += ["2 mm polymer liner:"] + [timing(n, m, liner) for n, m in grids]
     lines += [timing(n, m, liner, baseline=True) for n, m in [(32, 8), (48, 16), (64, 16)][:2 if quick else 3]]
     solver_setting(False)           # the sections below: today's solver
-    lines += ["", "Grid study of K and C (rigid, L/D = 1, Reynolds, groove fixed opposite the load; each 2 x 2 "
-              "matrix over its largest entry): the largest change from the grid before"]
-    previous = None
-    for n, m in ([(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]):
-        co = vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=WJ, length=D,
-                                       options=FiniteJournalOptions(n=n, m=m))
-        K, Cd = (np.asarray(a).reshape(2, 2) for a in (co.stiffness, co.damping))
-        scaled = np.concatenate([K.ravel() / np.abs(K).max(), Cd.ravel() / np.abs(Cd).max()])
-        change = "" if previous is None else f", change {np.max(np.abs(scaled - previous)):.2e}"
-        lines.append(f"{n}x{m}: K (MN/m) {np.array2string(K.ravel() / 1e6, precision=2)}, "
-                     f"C (kN s/m) {np.array2string(Cd.ravel() / 1e3, precision=1)}{change}")
-        previous = scaled
+    lines += [""] + grid_study(out, quick)
     whirl = np.linspace(0.0, 2.0 * WJ, 16)
     lines += ["", "Dynamic coefficients at 16 whirl frequencies (0 ... 2 omega), L/D = 1, 32 x 8, warm (first):"]
     for name, body in (("rigid", None), ("liner", liner)):
@@ -237,4 +276,8 @@ def main(out_dir="experiments/out", quick=False):
 
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    main(*(args[:1] or ["experiments/out"]), quick="--quick" in sys.argv)
+    if "--grid-study" in sys.argv:      # that section alone
+        out = _common.setup(args[0] if args else "experiments/out")
+        _common.atomic_write_text(out / "journal_finite_grid.txt", "\n".join(grid_study(out, "--quick" in sys.argv)) + "\n")
+    else:
+        main(*(args[:1] or ["experiments/out"]), quick="--quick" in sys.argv)
