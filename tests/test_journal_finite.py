@@ -55,7 +55,7 @@ def test_short_bearing_limit_ocvirk():
     assert 0 < ratios[0.05] - 1 < ratios[0.1] - 1 < ratios[0.2] - 1
 
 
-SOMMERFELD_LONG = FiniteJournalOptions(n=OPT.n, m=OPT.m, spacing="cosine")
+LONG_LAND = FiniteJournalOptions(n=OPT.n, m=OPT.m, spacing="cosine")
 
 
 def test_long_bearing_limit():
@@ -70,7 +70,7 @@ def test_long_bearing_limit():
                            options=JournalOptions(n=OPT.n))
     eps, phi = {}, {}
     for LD in (50.0, 100.0):
-        s = finite(W1 * LD * D, LD, cavitation="sommerfeld", options=SOMMERFELD_LONG)
+        s = finite(W1 * LD * D, LD, cavitation="sommerfeld", options=LONG_LAND)
         eps[LD], phi[LD] = float(s.eccentricity), float(s.attitude_angle)
     e0, p0 = float(long.eccentricity), float(long.attitude_angle)
     assert 0.5 < (eps[50.0] / e0 - 1) * 50 < 3.0
@@ -353,24 +353,25 @@ def test_coefficients_against_nonlinear_solves(tilted):
     assert np.max(np.abs(np.asarray(co.damping[0]) - Cd)) < 1e-3 * np.abs(Cd).max()
 
 
-def test_coefficients_tend_to_the_long_bearing():
-    """As L/D grows (full Sommerfeld film, groove fixed opposite the load), K/L and C/L tend
-    to the fixed-groove long bearing's, at rate D/L (3.6%, 1.9%, 1.0% of the largest entry at
-    L/D = 25, 50, 100): extrapolated from 50 and 100, 1.1e-3 (K) and 8e-4 (C). Under Reynolds
-    conditions the rupture boundary's cell jumps scatter them by several % on these grids
-    (issue 27, point 5)."""
+@pytest.mark.parametrize("cavitation, tol", [("sommerfeld", 2e-3), ("reynolds", 2.5e-3)])
+def test_coefficients_tend_to_the_long_bearing(cavitation, tol):
+    """As L/D grows (groove fixed opposite the load), K/L and C/L tend to the fixed-groove long
+    bearing's, at rate D/L. Full Sommerfeld film: 3.6%, 1.9%, 1.0% of the largest entry at
+    L/D = 25, 50, 100, extrapolated from 50 and 100 1.1e-3 (K) and 8e-4 (C). Reynolds
+    conditions, the rupture within its cell: 7.7%, 3.6%, 1.8%, extrapolated 1.8e-3 (K) and
+    1.7e-3 (C); with the rupture on a cell face they scattered by several % on these grids."""
     W1 = long_load(0.6)
-    long = vjax.journal_coefficients(R, C, ETA, W1, 0.0, omega_shaft=WJ, groove="fixed", cavitation="sommerfeld",
+    long = vjax.journal_coefficients(R, C, ETA, W1, 0.0, omega_shaft=WJ, groove="fixed", cavitation=cavitation,
                                      options=JournalOptions(n=OPT.n))
     K0, C0 = np.asarray(long.stiffness[0]), np.asarray(long.damping[0])
     K, Cd = {}, {}
     for LD in (50.0, 100.0):
         co = vjax.journal_coefficients(R, C, ETA, W1 * LD * D, 0.0, omega_shaft=WJ, length=LD * D,
-                                       cavitation="sommerfeld", options=SOMMERFELD_LONG)
+                                       cavitation=cavitation, options=LONG_LAND)
         K[LD], Cd[LD] = np.asarray(co.stiffness[0]) / (LD * D), np.asarray(co.damping[0]) / (LD * D)
-    assert np.max(np.abs(K[100.0] - K0)) < 0.02 * np.abs(K0).max()
-    assert np.max(np.abs(2 * K[100.0] - K[50.0] - K0)) < 2e-3 * np.abs(K0).max()
-    assert np.max(np.abs(2 * Cd[100.0] - Cd[50.0] - C0)) < 2e-3 * np.abs(C0).max()
+    assert np.max(np.abs(K[100.0] - K0)) < 0.025 * np.abs(K0).max()
+    assert np.max(np.abs(2 * K[100.0] - K[50.0] - K0)) < tol * np.abs(K0).max()
+    assert np.max(np.abs(2 * Cd[100.0] - Cd[50.0] - C0)) < tol * np.abs(C0).max()
 
 
 def test_coefficient_tables(tilted, tmp_path):
