@@ -172,7 +172,7 @@ def test_power_balance_and_outputs():
     W = 0.5 * long_load(0.5) * D
     s = finite(W, 1.0, supply_pressure=1e4)
     power = -WJ * float(s.torque_shaft) + 1e4 * float(s.supply_flow)
-    p, z = np.asarray(s.pressure), np.asarray(s.z)
+    p = np.asarray(s.pressure)
     outflow = np.asarray(_film2d.net_outflow(_film2d.fluxes(s.pressure, s.film, R, s.z, ETA, V), R, s.z))
     groove = np.all(np.abs(p[:, 1:-1] - 1e4) < 1e-8, axis=1)
     work = float(np.sum(p[~groove, 1:-1] * outflow[~groove]))
