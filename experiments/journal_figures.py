@@ -51,6 +51,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
+from vjax import _film2d  # noqa: E402
 
 RB, C, ETA, TAU = 0.1, 5e-4, 1e-3, 1.0
 EINF, E0, NU = 100e6, 1e6, 0.5
@@ -339,9 +340,15 @@ def finite_length(out, grid):
                           pmax_over_E0=float(np.max(s.pressure)) / E0, CB=float(s.torque) / (LOAD * L * RB),
                           share_pct=100 * float(s.torque_viscoelastic) / float(s.torque))
         if name != "long":
-            # power in = film dissipation + the bore's hysteresis (module docstring of vjax.journal_finite)
+            # power in + the pressure energy of the flow let out within the rupture's cells (the
+            # groove's pressure is 0) = film dissipation + the bore's hysteresis (module
+            # docstring of vjax.journal_finite; docs/theory.md §10)
             power_in = -WB * float(s.torque) - WJ * float(s.torque_shaft)
-            balance[name] = abs(power_in - (float(s.power_loss) - WB * float(s.torque_viscoelastic))) / abs(power_in)
+            v = 0.5 * (WB * RB + WJ * (RB - C))
+            outflow = _film2d.net_outflow(_film2d.fluxes(s.pressure, s.film, RB, s.z, eta, v), RB, s.z)
+            released = float(np.sum(np.asarray(s.pressure)[:, 1:-1] * np.asarray(outflow)))
+            balance[name] = abs(power_in + released - (float(s.power_loss) - WB * float(s.torque_viscoelastic))) \
+                / abs(power_in)
     fig, axes = plt.subplots(1, 3, figsize=(16, 4.2))
     fig.subplots_adjust(wspace=0.6)
     for name, s in sols.items():

@@ -61,8 +61,9 @@ rest is Couette; the Reynolds cavity is taken as full of lubricant, as in Raimon
 the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``power_loss``
 (W): the viscous dissipation in the film; with the bodies' hysteresis it balances the power
 put in, -omega_B torque - omega_J torque_shaft + p_s supply_flow = power_loss - omega_B
-torque_viscoelastic - omega_J torque_viscoelastic_shaft (the power balance of the discrete
-equations, up to the discretization).
+torque_viscoelastic - omega_J torque_viscoelastic_shaft, up to the pressure energy
+sum p_i w_i of the flow let out within the rupture's cells (the rupture located within its
+cell, :func:`vjax.reynolds.rupture_outflow`; ~1e-8 of the power), which the left side gains.
 
 Solver: the core's damped Newton (:func:`vjax._solve.newton`, steps giving h <= 0 rejected).
 An aligned bearing (``tilt`` None) has a pressure symmetric about mid-width: its unknowns are
