@@ -75,10 +75,10 @@ for a pattern moving at Omega relative to it):
   torque_viscoelastic_shaft. ``torque_shaft_about_O`` = torque_shaft + e x F (the
   thesis's choice, = -torque up to O(c/R) by the fluid's moment balance).
 - Power balance (exact for the discrete equations with Reynolds/Sommerfeld conditions):
-  -omega_B torque - omega_J torque_shaft + p_s Q_s + sum_i p_i w_i R dtheta
-  = dissipation_fluid + dissipation_housing + dissipation_shaft, the sum the pressure energy of
-  the flow let out within the rupture's cell (w_i its cell's net outflow per unit angle, zero
-  but there: :func:`vjax.reynolds.rupture_outflow`; ~1e-8 of the power).
+  -omega_B torque - omega_J torque_shaft + p_s Q_s + sum_i p_i (q_{i+1/2} - q_{i-1/2})
+  = dissipation_fluid + dissipation_housing + dissipation_shaft, the sum (over the cells but
+  the groove's) the pressure energy of the flow let out within the rupture's cell, the only
+  pressurized cell with a net outflow (:func:`vjax.reynolds.rupture_outflow`; ~1e-8 of the power).
 
 Solver
 ------
