@@ -187,13 +187,13 @@ def test_reynolds_converges_to_the_moving_rupture_reference(eps):
     """K and C under Reynolds conditions against vjax.reference.long_bearing_coefficients (the
     film integrated in closed form from a rupture that moves with the journal, quadrature and
     root; an independent computation), at each grid's own eccentricity: the error falls at
-    every doubling of n, to below 1e-4 of the largest entry at n = 512 (measured at eps 0.2:
-    K 7.2e-4, 1.8e-4, 4.5e-5, 1.1e-5, C likewise; at eps 0.8: K 8.9e-3, 1.8e-3, 5.9e-4, 1.4e-4,
-    C 2.1e-3, 1.1e-3, 1.3e-4, 3.0e-5 for n = 64 ... 512). With the rupture on a cell face they
-    scattered by about 1% (the issue's c_xx 2.493, 2.493, 2.532, 2.509, 2.517 for n = 384 ... 2048)."""
+    every doubling of n (measured at eps 0.2: K 7.2e-4, 1.8e-4, 4.5e-5, C 7.2e-4, 1.8e-4,
+    7.4e-5; at eps 0.8: K 8.9e-3, 1.8e-3, 5.9e-4, C 2.1e-3, 1.1e-3, 1.3e-4 for n = 64, 128,
+    256; on to 7e-7 and 7e-6 at n = 2048). With the rupture on a cell face they scattered by
+    about 1% (the issue's c_xx 2.493, 2.493, 2.532, 2.509, 2.517 for n = 384 ... 2048)."""
     W = float(reference.long_bearing(eps, R, C, ETA, V, "reynolds")["load"])
     errors = []
-    for n in (64, 128, 256, 512):
+    for n in (64, 128, 256):
         co = journal_coefficients(R, C, ETA, W, [0.0], omega_shaft=WJ, options=JournalOptions(n=n))
         K, Cd = (np.asarray(a[0]) for a in co.in_line_of_centres())
         K_ref, C_ref = (np.asarray(a) for a in reference.long_bearing_coefficients(
@@ -201,7 +201,7 @@ def test_reynolds_converges_to_the_moving_rupture_reference(eps):
         errors.append([np.abs(K - K_ref).max() / np.abs(K_ref).max(), np.abs(Cd - C_ref).max() / np.abs(C_ref).max()])
     errors = np.array(errors)
     assert np.all(errors[1:] < errors[:-1]), errors
-    assert np.all(errors[-1] < (2e-5 if eps < 0.5 else 2e-4)), errors
+    assert np.all(errors[-1] < (1e-4 if eps < 0.5 else 1e-3)), errors
 
 
 # ----------------------------------------------------------- stability threshold
