@@ -1,9 +1,11 @@
 """The bonded cylindrical layer in 3D (vjax.layer3d): Bessel helpers against scipy, the modal
 compliance against the plane-strain layer (k -> 0), the flat bonded layer and the oedometric
-limit (t/R -> 0), the half-space (large k t), and one mode against 3D finite elements.
+limit (t/R -> 0), the half-space (large k t), and one mode against 3D finite elements; the hole
+in an infinite body (kind "hole") against the plane hole (k -> 0, mode 1's log), the half-space
+and a very thick liner.
 
 Every call of ``modes`` below has the same shapes (8 orders x 4 wavenumbers, orders below 2048),
-so the module compiles the layer's program once (liner and sleeve share it)."""
+so the module compiles the layer's program once (liner and sleeve share it; ``hole`` likewise)."""
 import time
 
 import jax
@@ -180,3 +182,106 @@ def test_one_mode_matches_3d_finite_elements(kind, mesh):
     c2 = float(green.mode_compliance(kind, np.array([CASE["n"]]), CASE["nu"], thickness_ratio=CASE["tau"])[0])
     assert abs(c / c2 - 1) > 0.2                   # the check sees the axial coupling
     print(f"{kind} {mesh}: FE {seconds:.1f} s, error / peak {err:.2e}")
+
+
+# ------------------------------------------------------------------------------ the hole (kind "hole")
+def hole(n, kR, nu, ref=None):
+    """c (len(n), len(kR)) of the 3D hole, one compiled shape as :func:`modes`."""
+    n, kR = np.atleast_1d(n), np.atleast_1d(np.asarray(kR, dtype=float))
+    pn = np.concatenate([n, np.full(N_ORDERS - len(n), n[-1])])
+    pk = np.concatenate([kR, np.full(N_WAVES - len(kR), kR[-1])])
+    c = layer3d.layer_modes("hole", pn, pk, nu, n_max=2048, ref_length_ratio=ref)
+    return np.asarray(c)[: len(n), : len(kR)]
+
+
+def test_hole_long_wave_limit_is_the_plane_hole():
+    """c(n, k R -> 0) -> the plane hole (A.45, vjax.green.mode_compliance) for n = 0, 2, 3, 5, 10,
+    nu = 0.1, 0.3, 0.45, 0.5: within 1e-8 (relative) at k R = 1e-6 and 1e-5, 1e-7 at 1e-4; the
+    deviation is O((kR)^2) (n = 2: O((kR)^2 log kR), the K_1 family: a fall of 100 log(1e-4) / log(1e-5)
+    ~ 80), so from 1e-4 to 1e-5 it falls by at least 60 (measured: at most 1.4e-11 at 1e-6, 1.2e-9 at
+    1e-5, 9.5e-8 at 1e-4, all at n = 2, nu = 0.1; falls 80.8 to 99.3). k = 0 exactly is the plane
+    hole with the given reference length (mode 1 included)."""
+    n = np.array([0, 2, 3, 5, 10])
+    for nu in (0.1, 0.3, 0.45, 0.5):
+        c2 = np.asarray(green.mode_compliance("hole", n, nu))
+        dev = np.abs(hole(n, [1e-6, 1e-5, 1e-4], nu) / c2[:, None] - 1)
+        assert np.max(dev[:, :2]) < 1e-8 and np.max(dev[:, 2]) < 1e-7, (nu, dev)
+        assert np.all(dev[:, 2] > 60 * dev[:, 1]), (nu, dev)
+    c0 = hole(np.array([0, 1, 2, 7]), [0.0], 0.3, ref=20.0)[:, 0]
+    np.testing.assert_allclose(c0, green.mode_compliance("hole", np.array([0, 1, 2, 7]), 0.3, ref_length_ratio=20.0),
+                               rtol=1e-14)
+
+
+def test_hole_mode_1_grows_like_the_plane_translation_log():
+    """Mode 1 (a rigid translation in plane strain) has no k -> 0 limit: the plane hole's mode-1
+    compliance is w_cos * pi with w_cos = -(1+nu)/(2 pi) kappa/(kappa+1) (2 log(R/ref) + 1)
+    (vjax.green._coefficients "hole", the cos weight, whose mode-1 integral is pi), i.e.
+    -(1+nu) kappa/(kappa+1) per unit log R; in 3D the reference length becomes ~ 1/k, so
+    c(1, kR) - c(1, kR/10) -> -(1+nu) kappa/(kappa+1) log 10. The log coefficient is first checked on
+    green itself (c_1 at R/ref = e against 1); then the 3D difference converges to it, the
+    error falling as (kR)^2 (within 1e-6 at kR = 1e-4, 1e-8 at 1e-6; measured up to 2.6e-7, 5.5e-11,
+    nu = 0)."""
+    for nu in (0.0, 0.3, 0.5):
+        kap = 3 - 4 * nu
+        slope = -(1 + nu) * kap / (kap + 1)
+        w = green._coefficients("hole", np.e, nu, 1.0)[0] - green._coefficients("hole", 1.0, nu, 1.0)[0]
+        assert float(w) * np.pi == pytest.approx(slope, rel=1e-14)
+        plane = green.mode_compliance("hole", [1], nu, ref_length_ratio=np.exp(-1.0)) - \
+            green.mode_compliance("hole", [1], nu, ref_length_ratio=1.0)
+        assert float(plane[0]) == pytest.approx(slope, rel=1e-14)
+        errs = []
+        for kR in (1e-2, 1e-4, 1e-6):
+            c = hole(np.array([1]), [kR, kR / 10], nu)[0]
+            errs.append(abs(c[0] - c[1] - slope * np.log(10)))
+        assert errs[1] < 1e-6 and errs[2] < 1e-8 and errs[0] > errs[1] > errs[2], (nu, errs)
+
+
+def test_hole_short_wave_is_the_half_space():
+    """K R >> 1 (K = sqrt(k^2 + (n/R)^2)): the half-space 2 (1 - nu^2) / (E K), the relative error
+    O(1/(K R)) from the curvature: within 0.5 / (K R) at K R = 400 and 1600 (nu = 0.3; measured up to
+    0.404 / (K R), 0.401 / (K R)) and the largest error falls by more than 3.5 from 400 to 1600
+    (measured 1.68e-3 to 4.18e-4: 4.03)."""
+    nu, err = 0.3, []
+    for KR in (400, 1600):
+        n = np.array([0, KR // 2, KR])
+        kR = np.array([0.6, 1.0]) * KR
+        K = np.hypot(n[:, None], kR[None, :])
+        rel = np.abs(hole(n, kR, nu) * K / (2 * (1 - nu**2)) - 1)
+        assert np.max(rel * K) < 0.5, (KR, rel * K)
+        err.append(np.max(rel))
+    assert err[0] / err[1] > 3.5, err
+
+
+def test_very_thick_liner_is_the_hole():
+    """A liner t/R = 20, 50 thick tends to the hole (k R = 0.5, 2; n = 0, 1, 2, 3, 7, 30): the bond's
+    reflection decays like exp(-2 k t) (with a polynomial factor): within (2 k t)^2 exp(-2 k t) + 1e-13
+    (measured 1.1e-7 (nu = 0.3), 2.8e-7 (nu = 0.5) at k t = 10, against 8.2e-7; round-off, 4e-15,
+    elsewhere)."""
+    n = np.array([0, 1, 2, 3, 7, 30])
+    kR = np.array([0.5, 2.0])
+    for nu in (0.3, 0.5):
+        c = hole(n, kR, nu)
+        for tau in (20.0, 50.0):
+            dev = np.abs(modes("liner", n, kR, nu, tau) / c - 1)
+            bound = (2 * kR * tau) ** 2 * np.exp(-2 * kR * tau) + 1e-13
+            assert np.all(dev < bound[None, :]), (nu, tau, dev)
+
+
+def test_hole_incompressible_and_gradients():
+    """nu = 0.5 is finite (n = 0 to 30, k R = 1e-3 to 50) and positive; d c / d(kR) and d c / d nu
+    (jax) against central differences within 1e-6 (measured 1.2e-8) at k R = 0.3, 3, 30."""
+    n = np.array([0, 1, 2, 3, 7, 30])
+    c = hole(n, [1e-3, 0.5, 2.0, 50.0], 0.5)
+    assert np.all(np.isfinite(c)) and np.all(c > 0)
+    n = np.array([0, 1, 2, 5])
+    f = jax.jit(lambda kR, nu: layer3d.layer_modes("hole", n, kR, nu, n_max=16))
+    for x in (0.3, 3.0, 30.0):
+        g = jax.jacfwd(lambda y: f(y[None], 0.3)[:, 0])(jnp.asarray(x))
+        h = 1e-5 * x
+        fd = (f(jnp.asarray([x + h]), 0.3) - f(jnp.asarray([x - h]), 0.3))[:, 0] / (2 * h)
+        np.testing.assert_allclose(g, fd, rtol=1e-6)
+        gn = jax.jacfwd(lambda v: f(jnp.asarray([x]), v)[:, 0])(0.3)
+        fdn = (f(jnp.asarray([x]), 0.3 + 1e-6) - f(jnp.asarray([x]), 0.3 - 1e-6))[:, 0] / 2e-6
+        np.testing.assert_allclose(gn, fdn, rtol=1e-6)
+    with pytest.raises(ValueError, match="thickness_ratio"):
+        layer3d.layer_modes("liner", n, [1.0], 0.3)

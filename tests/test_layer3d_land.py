@@ -1,6 +1,7 @@
 """The 3D bonded layer's operator on the finite bearing's land grid (vjax.layer3d_land): single
 modes against the direct sum of 3D modal compliances over the exact cosine series, the plane-strain slices as the
-land grows long, and its axially uniform column equal to the plane ring's operator."""
+land grows long, and its axially uniform column equal to the plane ring's operator; the same for a
+hole through the land (kind "hole")."""
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -118,3 +119,95 @@ def test_whirl_response_at_zero_whirl_is_the_steady_operator():
         u = jnp.fft.ifft(idct1(S * dct1(jnp.fft.fft(p, axis=0), axis=1), axis=1), axis=0)
         err = float(jnp.max(jnp.abs(u - steady)) / jnp.max(jnp.abs(steady)))     # the imaginary part too
         assert (err < 1e-12) if same else (err > 1e-2), (whirl, err)
+
+
+# ------------------------------------------------------------------------------ the hole (kind "hole")
+def test_hole_axially_uniform_pressure_is_the_plane_hole_ring():
+    """A hole through the land (bodies.hole(mat, ref_length, axial="3d")): a z-uniform pressure
+    (random in theta) gives on every section the plane hole's ring operator applied to it
+    (bodies.hole(mat).operator(R, n)), to round-off (1e-12 of the peak; measured 3.6e-16), for the
+    default ref_length 1 m and for ref_length = R, on an SLS material moving at 40 rad/s; the
+    reference length changes the j = 0 column only (the other columns agree to 1e-12, measured
+    2.0e-15 of the peak; column 0 changes by 0.22 of it); a pressure
+    varying along z does not give the slices (the other columns differ by more than 5%)."""
+    from vjax import bodies
+    mat = Material.sls(1e8, 2e9, 0.01, 0.45)
+    n, m, L = 32, 8, 0.08
+    pt = np.random.default_rng(3).normal(size=n)
+    syms = []
+    for ref in (1.0, R):
+        body = bodies.hole(mat, ref_length=ref, axial="3d")
+        op = body.land_operator(R, n, m, L, omega=40.0)
+        ring = bodies.hole(mat, ref_length=ref).operator(R, n, omega=40.0)
+        u = np.asarray(op(jnp.asarray(np.repeat(pt[:, None], m + 1, axis=1))))
+        u2 = np.asarray(ring(jnp.asarray(pt)))
+        assert np.max(np.abs(u - u2[:, None])) < 1e-12 * np.max(np.abs(u2)), ref
+        assert np.max(np.abs(op.symbol[:, 4] / ring.symbol - 1)) > 0.05
+        syms.append(np.asarray(op.symbol))
+    assert np.max(np.abs(syms[0][:, 1:] - syms[1][:, 1:])) < 1e-12 * np.max(np.abs(syms[0]))
+    assert np.max(np.abs(syms[0][:, 0] - syms[1][:, 0])) > 0.1 * np.max(np.abs(syms[0]))
+
+
+def test_hole_single_modes_match_the_direct_sum_of_3d_modes():
+    """As test_single_modes_match_the_direct_sum_of_3d_modes for the hole (ref_length 1 m): the
+    exact cosine series of the piecewise-linear profile summed with vjax.layer3d's hole compliance
+    (q = 0 the plane hole's), 81 theta aliases, against the operator, whose axial images beyond 4 are
+    the half-space's: within 1e-4 of the mode (1e-3 at the theta Nyquist mode; measured 4.0e-4 there,
+    at most 7.5e-5 elsewhere)."""
+    n, m, L, Q = 16, 8, 0.1, 600
+    op = land_operator("hole", Material.elastic(E, NU), R, None, L, n, m)
+    th, zp = 2 * np.pi * np.arange(n) / n, np.linspace(0, L, m + 1)
+    for k, j in [(0, 3), (1, 0), (1, 2), (3, 5), (5, 1), (2, 8), (8, 8)]:
+        images = np.abs(k + np.arange(-40, 41) * n)
+        c = np.asarray(layer_modes("hole", images, np.arange(Q + 1) * np.pi * R / L, NU, ref_length_ratio=1.0 / R))
+        C = np.sum(c * np.sinc(images / n)[:, None], axis=0) * R / E
+        b = cosine_coefficients(zp, np.cos(j * np.pi * zp / L), Q)
+        exact = np.cos(np.outer(zp, np.arange(Q + 1)) * np.pi / L) @ (C * b)
+        u = np.asarray(op(jnp.asarray(np.cos(k * th)[:, None] * np.cos(j * np.pi * zp / L)[None, :])))
+        err = np.max(np.abs(u - np.cos(k * th)[:, None] * exact[None, :])) / np.max(np.abs(exact))
+        assert err < (1e-3 if k == n // 2 else 1e-4), (k, j, err)
+
+
+def test_hole_is_symmetric_in_z_and_spreads_a_middle_load():
+    """The hole's land operator commutes with the reflection z -> -z (a random pressure, to
+    round-off, measured 2.2e-16); a pressure on the land's middle half (|z| <= L/4, a bump in theta, ref_length 1 m,
+    L = 2 R) deforms the 3D hole less than the plane-strain slices at every node of the loaded patch
+    (p >= 0.1 of its peak; measured at most 0.70 of the slices there) and moves its unloaded ends
+    (z = +-L/2, where the slices do not move; measured 0.40 of the slices' peak at theta = 0)."""
+    mat = Material.elastic(E, NU)
+    n, m, L = 32, 16, 0.1
+    op = land_operator("hole", mat, R, None, L, n, m)
+    p = jnp.asarray(np.random.default_rng(4).normal(size=(n, m + 1)))
+    u, uf = np.asarray(op(p)), np.asarray(op(p[:, ::-1]))
+    assert np.max(np.abs(uf - u[:, ::-1])) < 1e-13 * np.max(np.abs(u))
+    th, z = 2 * np.pi * np.arange(n) / n, np.linspace(-L / 2, L / 2, m + 1)
+    P = 1e6 * np.exp(-3 * (1 - np.cos(th)))[:, None] * (np.abs(z) <= L / 4 + 1e-12)[None, :]
+    u3 = np.asarray(op(jnp.asarray(P)))
+    ring = ring_operator("hole", mat, R, n)
+    u2 = np.asarray(jax.vmap(ring, in_axes=1, out_axes=1)(jnp.asarray(P)))
+    patch = P >= 0.1 * P.max()
+    assert np.all(u3[patch] < 0.8 * u2[patch])
+    assert np.all(np.abs(u2[:, [0, -1]]) < 1e-12 * u2.max()) and np.all(u3[0, [0, -1]] > 0.2 * u2.max())
+
+
+def test_hole_whirl_response_and_arguments():
+    """The hole's whirl symbol at whirl 0 is its steady land operator (to round-off) and passes
+    the body's ref_length (Body.land_whirl_symbol; measured 2.4e-16; with ref_length 1 m instead of
+    0.2 m the symbol differs by 0.12 of its peak); a hole takes no thickness, a layer needs one."""
+    import pytest
+    from vjax import bodies
+    mat = Material.sls(1e8, 2e9, 0.01, 0.45)
+    body = bodies.hole(mat, ref_length=0.2, axial="3d")
+    p = jnp.asarray(np.random.default_rng(5).normal(size=(32, 9)))
+    steady = body.land_operator(R, 32, 8, 0.08, omega=40.0)(p)
+    S = body.land_whirl_symbol(R, 32, 8, 0.08, 40.0, 0.0)
+    u = jnp.fft.ifft(idct1(S * dct1(jnp.fft.fft(p, axis=0), axis=1), axis=1), axis=0)
+    assert float(jnp.max(jnp.abs(u - steady)) / jnp.max(jnp.abs(steady))) < 1e-12
+    S1 = whirl_symbol("hole", mat, R, None, 0.08, 32, 8, 40.0, 0.0)         # ref_length 1 m
+    assert float(jnp.max(jnp.abs(S1 - S))) > 1e-2 * float(jnp.max(jnp.abs(S)))
+    with pytest.raises(ValueError, match="a hole has no thickness"):
+        land_operator("hole", mat, R, T, 0.08, 32, 8)
+    with pytest.raises(ValueError, match="a liner needs one"):
+        land_operator("liner", mat, R, None, 0.08, 32, 8)
+    with pytest.raises(ValueError, match="axial"):
+        bodies.hole(mat, axial="2d")

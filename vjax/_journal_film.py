@@ -151,11 +151,13 @@ def effective_eps(h, c, offset=0.0):
     return -jnp.sign(a1) * jnp.sqrt(a1**2 + b1**2) / c
 
 
-def newton(x0, pr, cfg, smoothing=0.0):
+def newton(x0, pr, cfg, smoothing=0.0, subcell=True):
     """The core's Newton on the equations (films must stay positive): x, Stats (with the
     physical branch folded into the result). Under Reynolds conditions in two stages: the
     rupture on a face, then within its cell from there (a few steps; from a cold start the
-    sub-cell rupture's square root makes Newton creep)."""
+    sub-cell rupture's square root makes Newton creep). ``subcell`` (a traced bool) False stops
+    after the first stage: a start for another solve (a continuation's intermediate stage,
+    JFO's Reynolds start) needs no more."""
     n = x0.shape[0] - 2
     # a trust cap on the two geometric unknowns (eps, attitude)
     cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
@@ -177,7 +179,8 @@ def newton(x0, pr, cfg, smoothing=0.0):
     if cfg.cavitation == "reynolds":
         # a warm start (a solution nearby) goes straight to the second stage
         warm = jnp.max(jnp.abs(equations(x0, pr, cfg, smoothing)[0])) < reynolds.WARM_RESIDUAL
-        x, stats = _solve.in_turn(stage, x0, jnp.stack([jnp.where(warm, 1.0, 0.0), 1.0]).astype(x0.dtype))
+        second = jnp.where(subcell, 1.0, 0.0)     # without the sub-cell stage: the first again, a no-op
+        x, stats = _solve.in_turn(stage, x0, jnp.stack([jnp.where(warm, second, 0.0), second]).astype(x0.dtype))
     else:
         x, stats = stage(x0, 1.0)
     physical = effective_eps(fields(x, pr, cfg)["h"], pr.c, offset(x, cfg)) > 0

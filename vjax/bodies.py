@@ -5,6 +5,7 @@ its ring operator (:meth:`Body.operator`). Scenes take bodies (or a bare Materia
 the thesis's body for that ring, or None for a rigid one).
 
 - :func:`hole`: a hole in an infinite plane (A.45); ``ref_length`` fixes its rigid mode 1.
+  With ``axial="3d"``, in a finite journal bearing, a hole through a body as thick as the land.
 - :func:`disc`: a solid cylinder fixed at its centre (A.60); ``ref_length`` likewise.
 - :func:`half_plane`: the elastic half-plane on the ring's arc length (Chapter 3, Fig. 3.4).
 - :func:`liner`: a layer of given thickness loaded on its bore, its outer surface bonded to a
@@ -12,11 +13,13 @@ the thesis's body for that ring, or None for a rigid one).
 - :func:`sleeve`: a layer loaded on its outer surface, bonded to a rigid core (polymer-sleeved
   shafts and rollers, inner races).
 
-A liner or sleeve with ``axial="3d"`` is, in a finite journal bearing (``length=``), the bonded
-layer in 3D elasticity over the land (:mod:`vjax.layer3d`, :mod:`vjax.layer3d_land`: its ends
-slide on rigid shoulders at the land's ends); the default ``"slices"`` deforms each axial
-section as the plane ring. Plane scenes (and the infinitely long bearing) use the plane-strain
-layer either way: it is the 3D layer's long-wave limit.
+A liner, sleeve or hole with ``axial="3d"`` is, in a finite journal bearing (``length=``), the
+bonded layer (or the hole in a body of the land's thickness) in 3D elasticity over the land
+(:mod:`vjax.layer3d`, :mod:`vjax.layer3d_land`: its ends slide on rigid shoulders at the land's
+ends); the default ``"slices"`` deforms each axial section as the plane ring. Plane scenes (and
+the infinitely long bearing) use the plane-strain body either way: it is the 3D body's long-wave
+limit. A 3D hole's ``ref_length`` fixes only its axially uniform response (the plane hole's mode
+1); every axially varying one is a proper 3D response, independent of it.
 
 Which to pick: a polymer part much thicker than the contact and its clearance (thesis
 plates, solid polymer shafts) is a hole or a disc; a bushing, liner or sleeve whose
@@ -35,6 +38,7 @@ from . import checks
 from .material import Material
 from .operator import ring_operator, whirl_symbol
 
+AXIAL = ("slices", "3d")
 _GREEN = {"hole": "hole", "disc": "cylinder", "half_plane": "half_plane", "liner": "liner", "sleeve": "sleeve"}
 
 
@@ -62,10 +66,18 @@ class Body:
         return whirl_symbol(_GREEN[self.kind], self.material, R, n, omega, whirl, ref, self.thickness)
 
     def land_operator(self, R, n: int, m: int, length, omega=0.0, memory="periodic"):
-        """A 3D layer's operator on a finite bearing's land grid (``n`` theta elements by ``m`` + 1
-        uniform axial nodes over ``length`` m; :func:`vjax.layer3d_land.land_operator`)."""
+        """A 3D layer's or hole's operator on a finite bearing's land grid (``n`` theta elements by
+        ``m`` + 1 uniform axial nodes over ``length`` m; :func:`vjax.layer3d_land.land_operator`)."""
         from .layer3d_land import land_operator
-        return land_operator(self.kind, self.material, R, self.thickness, length, n, m, omega, memory)
+        ref = 1.0 if self.ref_length is None else self.ref_length
+        return land_operator(self.kind, self.material, R, self.thickness, length, n, m, omega, memory, ref)
+
+    def land_whirl_symbol(self, R, n: int, m: int, length, omega, whirl):
+        """The same body's whirl response on the land grid (:func:`vjax.layer3d_land.whirl_symbol`,
+        a hole with its ``ref_length``)."""
+        from .layer3d_land import whirl_symbol as land_whirl_symbol
+        ref = 1.0 if self.ref_length is None else self.ref_length
+        return land_whirl_symbol(self.kind, self.material, R, self.thickness, length, n, m, omega, whirl, ref)
 
     def at_temperature(self, shift, T) -> "Body":
         """The same body with its material at temperature ``T`` (C), see
@@ -73,17 +85,21 @@ class Body:
         return dataclasses.replace(self, material=self.material.at_temperature(shift, T))
 
 
-def _with_ref_length(kind, material, ref_length):
+def _with_ref_length(kind, material, ref_length, axial="slices"):
     checks.instance("material", material, Material, "a vjax.Material")
     checks.positive("ref_length", ref_length)
     checks.scalar("ref_length", ref_length)
-    return Body(material, ref_length=ref_length, kind=kind)
+    checks.one_of("axial", axial, AXIAL)
+    return Body(material, ref_length=ref_length, kind=kind, axial=axial)
 
 
-def hole(material: Material, ref_length=1.0) -> Body:
+def hole(material: Material, ref_length=1.0, axial: str = "slices") -> Body:
     """A hole in an infinite plane of ``material`` (A.45). ``ref_length`` (m): the distance
-    at which the plane is held (the thesis's log R with R in metres: 1 m)."""
-    return _with_ref_length("hole", material, ref_length)
+    at which the plane is held (the thesis's log R with R in metres: 1 m). ``axial``: how a
+    finite journal bearing deforms it over the land, "slices" (plane strain per axial section)
+    or "3d" (a hole through a body of the land's thickness whose faces slide on rigid shoulders,
+    in 3D elasticity, :mod:`vjax.layer3d_land`)."""
+    return _with_ref_length("hole", material, ref_length, axial)
 
 
 def disc(material: Material, ref_length=1.0) -> Body:
@@ -96,9 +112,6 @@ def half_plane(material: Material, ref_length=1.0) -> Body:
     """An elastic half-plane of ``material`` on the ring's arc length; ``ref_length`` (m) is
     the additive constant of its log kernel (not stated in the thesis)."""
     return _with_ref_length("half_plane", material, ref_length)
-
-
-AXIAL = ("slices", "3d")
 
 
 def _layer(kind, material, thickness, axial):

@@ -238,12 +238,14 @@ def _staged(pr: film.Params, t):
     return dataclasses.replace(pr, v=pr.v * m, q_ref=pr.q_ref * m, op_B=scale(pr.op_B), op_J=scale(pr.op_J)), m
 
 
-def _continuation(pr, cfg, x0=None):
+def _continuation(pr, cfg, x0=None, subcell=True):
     """Adaptive continuation in t (see :func:`_staged`, :func:`vjax._solve.continuation`): at most
     ``stages`` Newton solves; with ``x0`` (``strategy="auto"``) a direct solve from it first."""
     n = pr.x0.shape[0] - 2
     guess = film.guess(_staged(pr, 0.0)[0], n, cfg)
-    return _solve.continuation(lambda x, t: film.newton(x, _staged(pr, t)[0], cfg), guess, x0, cfg.options.stages)
+    # the intermediate stages are only starts: their rupture on a face will do
+    return _solve.continuation(lambda x, t: film.newton(x, _staged(pr, t)[0], cfg, subcell=subcell & (t >= 2.0)), guess, x0,
+                               cfg.options.stages)
 
 
 def _jfo_start(x, pr: film.Params, cfg: film.Config):
@@ -265,7 +267,7 @@ def _solver(pr: film.Params, cfg: film.Config):
         return _solve_steady(pr, cfg)
     n = pr.x0.shape[0] - 2
     start = dataclasses.replace(pr, x0=pr.x0.at[:n].max(0.0))
-    xr, (st_r, stages) = _solve_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
+    xr, (st_r, stages) = _solve_steady(start, dataclasses.replace(cfg, cavitation="reynolds"), subcell=False)
     x0 = _jfo_start(xr, pr, cfg)
     # Newton on the exact switch from the Reynolds start. Where the film re-forms before the
     # groove, that start can be far from the JFO solution and the semismooth Newton stall on
@@ -277,18 +279,20 @@ def _solver(pr: film.Params, cfg: film.Config):
     return x, (_solve.Stats(st_r.iterations + st.iterations, st.residual, result), stages)
 
 
-def _solve_steady(pr: film.Params, cfg: film.Config):
+def _solve_steady(pr: film.Params, cfg: film.Config, subcell=True):
+    """Steady solution: Newton, or continuation (compliant bodies); ``subcell`` False leaves a
+    Reynolds rupture on a cell face (a start for JFO, :func:`vjax._journal_film.newton`)."""
     compliant = pr.op_B is not None or pr.op_J is not None
     x0 = jax.lax.stop_gradient(pr.x0)
     strategy = cfg.options.strategy if compliant else "newton"
     if strategy == "newton":
-        x, stats = film.newton(x0, pr, cfg)
+        x, stats = film.newton(x0, pr, cfg, subcell=subcell)
         stages = jnp.asarray(0)
     else:
-        x, stats, stages = _continuation(pr, cfg, x0 if strategy == "auto" else None)
+        x, stats, stages = _continuation(pr, cfg, x0 if strategy == "auto" else None, subcell)
     # the residual of the target problem at the returned point (after a failed
     # continuation x belongs to an intermediate stage)
-    r = jnp.max(jnp.abs(film.equations(x, pr, cfg)[0]))
+    r = jnp.max(jnp.abs(film.equations(x, pr, cfg, subcell=jnp.where(subcell, 1.0, 0.0))[0]))
     residual = jnp.where(jnp.isfinite(r), r, jnp.inf)
     result = jnp.where(stats.converged & ~(residual <= cfg.tol), _solve.MAX_ITERATIONS, stats.result)
     return x, (_solve.Stats(stats.iterations, residual, result), stages)

@@ -104,7 +104,6 @@ import numpy as np
 from . import _blocks, _film2d, _journal_film, _krylov, _multigrid, _scene, _solve, checks, reference, reynolds
 from .bodies import as_body, check_fits, disc, hole
 from .layer3d_land import LandOperator, dct1, idct1
-from .layer3d_land import whirl_symbol as land_whirl_symbol
 from .operator import RingOperator, grid, memory_revolutions
 
 GROOVES = ("fixed", "circumferential")
@@ -550,7 +549,8 @@ def _steady(pr: Params, cfg: Config):
     rigid estimate: one Newton in one loop (compiled once), the stage parameter traced."""
     if _rigid(pr):
         return _film_steady(pr, cfg)
-    solve = lambda x, t: _film_steady(dataclasses.replace(_staged(pr, t), x0=x), cfg)     # noqa: E731
+    # the intermediate stages are only starts: their rupture on a face will do
+    solve = lambda x, t: _film_steady(dataclasses.replace(_staged(pr, t), x0=x), cfg, t >= 2.0)     # noqa: E731
     guess = jax.lax.stop_gradient(_guess(_staged(pr, 0.0), cfg))
     x, st, _ = _solve.continuation(solve, guess, jax.lax.stop_gradient(pr.x0), CONTINUATION_STAGES)
     return x, st
@@ -579,7 +579,7 @@ def _jfo_steady(pr: Params, cfg: Config):
     one loop, mu traced: compiled once (the Reynolds stage apart)."""
     N = _unknowns(cfg)
     start = dataclasses.replace(pr, x0=pr.x0.at[:N].max(0.0))
-    xr, st_r = _film_steady(start, dataclasses.replace(cfg, cavitation="reynolds"))
+    xr, st_r = _film_steady(start, dataclasses.replace(cfg, cavitation="reynolds"), subcell=False)
     x0 = _jfo_start(xr, pr, cfg)
     x, st = _solve.homotopy(lambda x, mu: _newton(x, dataclasses.replace(pr, smoothing=mu), cfg), x0,
                             (0.0,) + reynolds.JFO_SMOOTHING + (0.0,))
@@ -587,14 +587,16 @@ def _jfo_steady(pr: Params, cfg: Config):
     return x, _solve.Stats(st_r.iterations + st.iterations, st.residual, result)
 
 
-def _film_steady(pr: Params, cfg: Config):
+def _film_steady(pr: Params, cfg: Config, subcell=True):
     """Newton from ``pr.x0``; under Reynolds conditions, if that fails (the semismooth Newton can
     stall on the complementarity's kinks far from the root), again from the half-Sommerfeld
     solution (a linear film for a given position: a few steps), its pressure clipped at 0 and
     raised by 0.1 p_ref; these with the rupture on a cell face, then a last Newton from there
     with the rupture within its cell (a few steps; from a cold start the sub-cell rupture's
-    square root makes Newton creep). The stages run through one Newton (compiled once), the
-    relaxation and the sub-cell rupture traced switches."""
+    square root makes Newton creep); ``subcell`` (a traced bool) False stops before that last
+    Newton: a start for another solve (a continuation's intermediate stage, JFO's Reynolds
+    start) needs no more. The stages run through one Newton (compiled once), the relaxation and
+    the sub-cell rupture traced switches."""
     x0 = jax.lax.stop_gradient(pr.x0)
     if cfg.cavitation == "jfo":
         return _jfo_steady(pr, cfg)
@@ -605,6 +607,7 @@ def _film_steady(pr: Params, cfg: Config):
     # stages: 0 from x0, 1 half-Sommerfeld from x0 (if 0 failed), 2 from its solution, 3 the
     # rupture within its cell (after 0 or 2 converged), 4 done
     after = jnp.array([[1, 3], [4, 2], [4, 3], [4, 4]])     # [stage, converged] -> next stage
+    after = jnp.where(subcell, after, jnp.where(after == 3, 4, after))
 
     def body(c):
         k, x, its, _ = c
@@ -617,7 +620,8 @@ def _film_steady(pr: Params, cfg: Config):
     init = _solve.Stats(jnp.asarray(0), jnp.asarray(jnp.inf, x0.dtype), jnp.asarray(_solve.MAX_ITERATIONS))
     # a warm start (a solution nearby) goes straight to stage 3
     warm = jnp.max(jnp.abs(equations(x0, pr, cfg)[0])) < reynolds.WARM_RESIDUAL
-    k, x, its, st = jax.lax.while_loop(lambda c: c[0] < 4, body, (jnp.where(warm, 3, 0), x0, jnp.asarray(0), init))
+    k, x, its, st = jax.lax.while_loop(lambda c: c[0] < 4, body,
+                                       (jnp.where(warm & subcell, 3, 0), x0, jnp.asarray(0), init))
     # a failed stage ends the solve with its own code
     return x, _solve.Stats(its, st.residual, st.result)
 
@@ -908,8 +912,7 @@ def _whirl_response(pr: Params, cfg: Config, bodies, W):
     slices = [b for b in bodies if b[0] is not None and b[0].axial != "3d"]
     layers = [b for b in bodies if b[0] is not None and b[0].axial == "3d"]
     S = sum(body.whirl_symbol(R_b, n, omega_b, W) for body, R_b, omega_b in slices)
-    S3 = sum(land_whirl_symbol(body.kind, body.material, R_b, body.thickness, pr.L, n, m, omega_b, W)
-             for body, R_b, omega_b in layers)
+    S3 = sum(body.land_whirl_symbol(R_b, n, m, pr.L, omega_b, W) for body, R_b, omega_b in layers)
 
     def response(dp):
         P = jnp.fft.fft(dp, axis=0)

@@ -6,7 +6,8 @@ A layer a <= r <= b of a linear elastic material (Young modulus E, Poisson ratio
     p(theta, z) = P cos(n theta) cos(k z)        (Pa, pushing into the body; no shear)
 
 - ``"liner"``: loaded on its bore r = a = R, bonded at b = R + t (a bushing in a housing);
-- ``"sleeve"``: loaded on its outer surface r = b = R, bonded at a = R - t (a sleeved shaft).
+- ``"sleeve"``: loaded on its outer surface r = b = R, bonded at a = R - t (a sleeved shaft);
+- ``"hole"``: the limit t -> infinity of the liner, a hole in an infinite body (below).
 
 The radial displacement of the loaded surface, positive into the body, is
 
@@ -60,6 +61,23 @@ equilibrated, Gaussian elimination with partial pivoting). n = 0 has no theta fi
 theta rows then pin solution (2)'s coefficients to zero (the axisymmetric pair is (1), (3)).
 k = 0 exactly is the plane-strain layer (:func:`vjax.green.mode_compliance`), the limit.
 
+Hole in an infinite body
+------------------------
+``"hole"``: a cylindrical hole of radius R in an infinite body, loaded on its bore by the same
+pressure (no shear), u = c(n, k R, nu) (R / E) P cos(n theta) cos(k z) into the body (units and
+sign of :func:`vjax.green.mode_compliance` ``"hole"``). For k > 0 only the three decaying K
+solutions (1), (2), (3) (K_n, K_n, K_(n-1)) stay finite at infinity; the three traction rows on
+r = R (sigma_rr = -P, sigma_r theta = 0, sigma_rz / k = 0) give one 3 x 3 solve per (n, k)
+(n = 0: the theta row pins solution (2), as for the layer). n >= 2 and n = 0 tend to the plane
+hole as k -> 0 (O((kR)^2), with a log for n = 2); mode 1, a rigid translation in plane strain,
+grows like -(1 + nu) kappa / (kappa + 1) log(k R) (kappa = 3 - 4 nu): the plane hole's
+log R / ref_length coefficient with the reference length ~ 1/k (numerically, to 1e-10 at
+nu = 0, 0.3, 0.45, 0.5: c(1, kR) -> the plane hole's with ref_length = 2 exp((kappa + 1) / (2 kappa)
+- gamma_Euler) / k; an identification, not derived here). k = 0 exactly is the plane
+hole (:func:`vjax.green.mode_compliance`, its mode 1 fixed by ``ref_length_ratio`` =
+ref_length / R, as the thesis fixes it); large k R and n tend to the half-space
+2 (1 - nu^2) / sqrt((k R)^2 + n^2).
+
 Bessel functions without overflow: each column is scaled by its function's value on the
 surface where it is largest (I on the outer radius, K on the inner one), so the ratios
 Z_m(k r) / Z_m(k r_ref) <= 1 and the logarithmic derivatives are all that is needed.
@@ -79,7 +97,9 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .green import LAYERS, _michell_modes, _solve_small
+from .green import LAYERS, _michell_modes, _solve_small, mode_compliance
+
+KINDS = LAYERS + ("hole",)
 
 X_MAX = 2.5e3          # k r for which the backward recurrence converges even from a crude start
 _MILLER_DEPTH = int(np.ceil(np.sqrt(45.0 * X_MAX))) + 16   # extra orders: errors damp ~ exp(-D^2 / x)
@@ -173,29 +193,65 @@ def _fields(family, n, k, r, nu, f, f1, order):
     return jnp.stack([U, V, w, srr, srt, srz], -1)
 
 
-def layer_modes(kind: str, n, kR, nu, thickness_ratio, n_max: int | None = None):
-    """Dimensionless 3D compliance c(n, k R) of a bonded layer (module docstring), shape
-    ``n.shape + kR.shape``.
+def layer_modes(kind: str, n, kR, nu, thickness_ratio=None, n_max: int | None = None, ref_length_ratio=None):
+    """Dimensionless 3D compliance c(n, k R) of a bonded layer or of a hole (module docstring),
+    shape ``n.shape + kR.shape``.
 
-    ``kind``: "liner" (loaded on its bore, bonded outside) or "sleeve" (loaded outside, bonded
-    on a core); ``n``: circumferential orders (integers); ``kR``: axial wavenumber times the
-    loaded radius R (>= 0; k = j pi / L for a layer between sliding shoulders); ``nu``: Poisson
-    ratio (<= 0.5, 0.5 allowed); ``thickness_ratio``: t / R (a sleeve's below 1). u = c (R / E) P
-    into the body; k = 0 gives :func:`vjax.green.mode_compliance`'s plane-strain value.
-    Differentiable in kR, nu and t/R. ``n_max``: a static bound on the orders (needed when
-    ``n`` is traced; else max(n) rounded up to a power of two, so that calls share compiles)."""
-    if kind not in LAYERS:
-        raise ValueError(f"kind must be one of {', '.join(LAYERS)}, got {kind!r}")
+    ``kind``: "liner" (loaded on its bore, bonded outside), "sleeve" (loaded outside, bonded on a
+    core) or "hole" (in an infinite body); ``n``: circumferential orders (integers); ``kR``: axial
+    wavenumber times the loaded radius R (>= 0; k = j pi / L for a layer between sliding
+    shoulders); ``nu``: Poisson ratio (<= 0.5, 0.5 allowed); ``thickness_ratio``: a layer's t / R
+    (a sleeve's below 1; not for a hole); ``ref_length_ratio``: a hole's ref_length / R, which
+    fixes its mode 1 at k = 0 only (default 1). u = c (R / E) P into the body; k = 0 gives
+    :func:`vjax.green.mode_compliance`'s plane-strain value. Differentiable in kR, nu and t/R.
+    ``n_max``: a static bound on the orders (needed when ``n`` is traced; else max(n) rounded up to
+    a power of two, so that calls share compiles)."""
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    if kind in LAYERS and thickness_ratio is None:
+        raise ValueError(f"a {kind} needs thickness_ratio = t / R")
     if n_max is None:
         top = int(np.max(np.abs(np.asarray(n)))) if np.size(n) else 0
         n_max = max(16, 1 << int(np.ceil(np.log2(top + 1))))
-    dtype = jnp.result_type(kR, nu, thickness_ratio)
+    extra = 1.0 if ref_length_ratio is None else ref_length_ratio
+    dtype = jnp.result_type(kR, nu, extra if thickness_ratio is None else thickness_ratio)
     dtype = dtype if jnp.issubdtype(dtype, jnp.floating) else jnp.result_type(float)
     n = jnp.asarray(n)
     out_shape = n.shape + jnp.shape(kR)
-    c = _layer_core(int(n_max), jnp.abs(n).reshape(-1).astype(jnp.int32), jnp.asarray(kR, dtype).reshape(-1),
-                    jnp.asarray(nu, dtype), jnp.asarray(thickness_ratio, dtype), kind == "liner")
+    m, kR = jnp.abs(n).reshape(-1).astype(jnp.int32), jnp.asarray(kR, dtype).reshape(-1)
+    if kind == "hole":
+        c = _hole_core(int(n_max), m, kR, jnp.asarray(nu, dtype), jnp.asarray(extra, dtype))
+    else:
+        c = _layer_core(int(n_max), m, kR, jnp.asarray(nu, dtype), jnp.asarray(thickness_ratio, dtype),
+                        kind == "liner")
     return c.reshape(out_shape)
+
+
+@partial(jax.jit, static_argnums=(0,))
+def _hole_core(n_max, m, kR, nu, ref):
+    """c (N, P) of the hole for orders m (N,) <= n_max and kR (P,): the three K solutions, each
+    scaled by its value on the bore (f = 1, f' = k K_o'/K_o), and the three traction rows there;
+    k = 0 exactly: the plane hole with ref_length / R = ``ref``."""
+    dtype = kR.dtype
+    zero_k = kR == 0
+    k = jnp.where(zero_k, 1.0, kR)
+    _, qK = k_table(k, n_max)                            # (n_max + 1, P)
+    nf, kk = m.astype(dtype)[:, None], k[None, :]
+    cols = []
+    for family, o in zip((1, 2, 3), (m, m, jnp.abs(m - 1))):
+        of = o.astype(dtype)[:, None]
+        dlog = -kk * qK[o] - of                          # K_o'/K_o in r at r = 1
+        cols.append(_fields(family, nf, kk, 1.0, nu, jnp.ones_like(dlog), dlog, of))
+    fields = jnp.stack(cols, -1)                         # (N, P, 6, 3)
+    eye = jnp.eye(3, dtype=dtype)
+    A = fields[..., 3:, :]
+    A = A.at[..., 1, :].set(jnp.where((m == 0)[:, None, None], eye[1], A[..., 1, :]))   # n = 0: pin (2)
+    rhs = jnp.broadcast_to(-eye[0], A.shape[:-1])
+    scale = jnp.max(jnp.abs(A), -1)
+    coef = _solve_small(A / scale[..., None], rhs / scale)
+    c3 = jnp.sum(fields[..., 0, :] * coef, -1)
+    c2 = mode_compliance("hole", nf, nu, ref_length_ratio=ref)
+    return jnp.where(zero_k[None, :], c2.astype(dtype), c3)
 
 
 @partial(jax.jit, static_argnums=(0,))

@@ -1,4 +1,4 @@
-"""The bonded 3D layer's operator on a finite bearing's land grid: FFT in theta, DCT-I in z.
+"""The bonded 3D layer's (or hole's) operator on a finite bearing's land grid: FFT in theta, DCT-I in z.
 
 Grid (:mod:`vjax._film2d`): n elements in theta (centres 2 pi i / n) by m + 1 uniformly spaced
 axial nodes z_0 = -L/2 ... z_m = L/2. The layer (:mod:`vjax.layer3d`) spans the land and its
@@ -27,6 +27,14 @@ base theta mode and its eight nearest aliases (the farther ones keep plane strai
 ones (|s| <= 200, weight ~ 1/(pi s)^2) by the flat bonded layer of the same wavenumber (their
 waves are at most L / (4.5 m) long: short against the layer's curvature).
 
+A hole (kind ``"hole"``, :func:`vjax.layer3d.layer_modes`): a hole of radius R through a body of
+thickness L (the land) whose faces slide on rigid frictionless shoulders at z = +-L/2, so the
+cosine modes are exact as for the layer. The same G with L_k the plane hole's element symbol
+(A.45, its mode 1 fixed by ``ref_length``, so that a z-uniform pressure gives the plane hole's
+ring operator), c the 3D hole's compliance (c_2D the plane hole's, with the same ``ref_length``,
+which thus cancels from every column but j = 0: the 3D hole has no rigid mode for k > 0), and the
+far axial images by the half-space 2 (1 - nu^2) / (K R), the flat layer's infinite-thickness limit.
+
 One application: rfft in theta, a length-2m FFT of the even extension in z and their inverses,
 O(N log N) for N = n (m + 1).
 """
@@ -40,7 +48,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import checks, green
-from .layer3d import layer_modes
+from .layer3d import KINDS, layer_modes
 from .material import Material
 from .operator import effective_compliance, element_symbol, memory_revolutions, whirl_compliance
 
@@ -91,31 +99,44 @@ class LandOperator:
 
 
 def land_operator(kind: str, material: Material, R, thickness, length, n: int, m: int, omega=0.0,
-                  memory="periodic") -> LandOperator:
-    """The 3D bonded layer's :class:`LandOperator` (module docstring).
+                  memory="periodic", ref_length=1.0) -> LandOperator:
+    """The 3D bonded layer's or hole's :class:`LandOperator` (module docstring).
 
-    ``kind`` "liner" (loaded on its bore of radius ``R``, bonded outside) or "sleeve" (loaded on
-    its outer surface of radius ``R``, bonded on a core); ``thickness`` (m); ``length`` L (m) of
-    the land and of the layer (its ends sliding on rigid shoulders); ``n`` theta elements, ``m``
-    axial intervals (uniform nodes); ``omega`` (rad/s) the pressure pattern's speed relative to the
-    body, ``memory`` as :func:`vjax.operator.ring_operator`."""
-    if kind not in green.LAYERS:
-        raise ValueError(f"kind must be one of {', '.join(green.LAYERS)}, got {kind!r}")
+    ``kind`` "liner" (loaded on its bore of radius ``R``, bonded outside), "sleeve" (loaded on
+    its outer surface of radius ``R``, bonded on a core) or "hole" (in a body of thickness
+    ``length``); ``thickness`` (m) a layer's (None for a hole); ``length`` L (m) of the land and
+    of the layer or body (its ends sliding on rigid shoulders); ``n`` theta elements, ``m`` axial
+    intervals (uniform nodes); ``omega`` (rad/s) the pressure pattern's speed relative to the
+    body, ``memory`` as :func:`vjax.operator.ring_operator`; ``ref_length`` (m) a hole's plane
+    mode 1 reference length (:func:`vjax.bodies.hole`; the axially uniform column only)."""
+    _check_kind(kind, thickness)
+    for name, val in (("ref_length", ref_length) if kind == "hole" else ("thickness", thickness),):
+        checks.positive(name, val)
+        checks.scalar(name, val)
     if not isinstance(n, (int, np.integer)) or n < 4 or not isinstance(m, (int, np.integer)) or m < 2:
         raise ValueError(f"n >= 4 and m >= 2 must be integers, got n={n!r}, m={m!r}")
     checks.instance("material", material, Material, "a vjax.Material")
-    for name, val in (("R", R), ("thickness", thickness), ("length", length)):
+    for name, val in (("R", R), ("length", length)):
         checks.positive(name, val)
         checks.scalar(name, val)
     memory_revolutions(memory)
-    return LandOperator(_symbol(kind, material, R, thickness, length, int(n), int(m), omega, memory), int(n))
+    return LandOperator(_symbol(kind, material, R, thickness, length, int(n), int(m), omega, memory, ref_length),
+                        int(n))
+
+
+def _check_kind(kind, thickness):
+    """A layer's kind (which needs a thickness), or a hole's (which has none)."""
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    if (kind == "hole") != (thickness is None):
+        raise ValueError(f"a hole has no thickness, a {kind} needs one, got thickness={thickness!r}")
 
 
 @partial(jax.jit, static_argnums=(0, 5, 6, 8))
-def _symbol(kind, material, R, thickness, length, n, m, omega, memory):
+def _symbol(kind, material, R, thickness, length, n, m, omega, memory, ref_length):
     """(n // 2 + 1, m + 1) symbol (m/Pa); compiled once per (kind, n, m, memory, material shape)."""
     J = effective_compliance(material, jnp.arange(n // 2 + 1), omega, memory)
-    return R * J[:, None] * _geometry(kind, material.nu, R, thickness, length, n, m)
+    return R * J[:, None] * _geometry(kind, material.nu, R, thickness, length, n, m, ref_length)
 
 
 def _flat_layer(KR, tau, nu):
@@ -129,36 +150,46 @@ def _flat_layer(KR, tau, nu):
         kap + (2.0 * s * s + 0.5 * (1.0 + kap * kap)) * sech)
 
 
-def _geometry(kind, nu, R, thickness, length, n, m):
+def _far_image(kind, KR, tau, nu):
+    """The far axial images' compliance (units of c) at wavenumber K: the flat bonded layer, or
+    for a hole its infinite-thickness limit, the half-space 2 (1 - nu^2) / (K R)."""
+    if kind == "hole":
+        return 2.0 * (1.0 - nu**2) / KR
+    return _flat_layer(KR, tau, nu)
+
+
+def _geometry(kind, nu, R, thickness, length, n, m, ref_length=1.0):
     """The symbol's elastic part, E = 1 (n // 2 + 1, m + 1): G_kj of the module docstring; the
     axial images beyond ``Z_IMAGES`` (up to ``Z_TAIL``: their wavenumber is then at least 10 m pi / L,
-    a short wave on the layer) by the flat bonded layer of wavenumber sqrt((k/R)^2 + k_q^2)."""
+    a short wave on the layer) by the flat bonded layer (a hole: the half-space) of wavenumber
+    sqrt((k/R)^2 + k_q^2)."""
     k = np.arange(n // 2 + 1)
     images = np.abs(k[:, None] + n * np.array(ALIASES)[None, :])           # (n/2 + 1, theta images)
     j = np.arange(m + 1)
     q = np.abs(j[:, None] + 2 * m * np.array(Z_IMAGES)[None, :])          # (m + 1, z images)
     hat = jnp.asarray(np.sinc(q / (2.0 * m)) ** 2)                          # piecewise-linear in z
     kR = jnp.asarray(q.ravel(), float) * jnp.pi * R / length
-    tau = thickness / R
-    c3 = layer_modes(kind, images, kR, nu, tau).reshape(images.shape + q.shape)
+    tau, ref = (None, ref_length / R) if kind == "hole" else (thickness / R, None)
+    c3 = layer_modes(kind, images, kR, nu, tau, ref_length_ratio=ref).reshape(images.shape + q.shape)
     c3 = jnp.sum(c3 * hat, axis=-1)                                          # (n/2 + 1, theta images, m + 1)
     far = np.array([s for s in range(-Z_TAIL, Z_TAIL + 1) if s not in Z_IMAGES])
     qf = np.abs(j[:, None] + 2 * m * far[None, :])                         # (m + 1, far images)
     KR = jnp.sqrt(images[..., None, None] ** 2 + (jnp.asarray(qf, float) * jnp.pi * R / length) ** 2)
-    c3 = c3 + jnp.sum(_flat_layer(KR, tau, nu) * jnp.asarray(np.sinc(qf / (2.0 * m)) ** 2), axis=-1)
-    c2 = green.mode_compliance(kind, images, nu, thickness_ratio=tau)      # (n/2 + 1, theta images)
+    c3 = c3 + jnp.sum(_far_image(kind, KR, tau, nu) * jnp.asarray(np.sinc(qf / (2.0 * m)) ** 2), axis=-1)
+    c2 = green.mode_compliance(kind, images, nu, thickness_ratio=tau, ref_length_ratio=ref)   # (n/2 + 1, theta images)
     weight = jnp.sinc(images / n)                                           # sin(m alpha) / (m alpha)
     correction = jnp.sum((c3 - c2[..., None]) * weight[..., None], axis=1)
-    return element_symbol(kind, n, R, nu, thickness=thickness)[:, None] + correction
+    return element_symbol(kind, n, R, nu, ref_length, thickness)[:, None] + correction
 
 
-def whirl_symbol(kind, material, R, thickness, length, n: int, m: int, omega, whirl):
-    """Symbol (n, m + 1) (m/Pa, complex) of the 3D layer's response to a small pressure
+def whirl_symbol(kind, material, R, thickness, length, n: int, m: int, omega, whirl, ref_length=1.0):
+    """Symbol (n, m + 1) (m/Pa, complex) of the 3D layer's (or hole's) response to a small pressure
     perturbation p(theta, z) e^(i whirl t) on a pattern moving at ``omega`` (rad/s) relative to
     the body, on the full FFT in theta (``fftfreq`` order) and the DCT-I in z:
     u = ifft(idct1(S dct1(fft(p)))). Theta mode k (signed) responds at its own frequency
     -k omega + whirl (:func:`vjax.operator.whirl_compliance`), times the geometry G of
-    :func:`land_operator`."""
-    G = _geometry(kind, material.nu, R, thickness, length, n, m)            # (n/2 + 1, m + 1)
+    :func:`land_operator` (``ref_length``: a hole's, as there)."""
+    _check_kind(kind, thickness)
+    G = _geometry(kind, material.nu, R, thickness, length, n, m, ref_length)   # (n/2 + 1, m + 1)
     J = whirl_compliance(material, n, omega, whirl)
     return R * J[:, None] * G[np.abs(np.fft.fftfreq(n, 1.0 / n)).astype(int)]
