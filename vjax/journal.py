@@ -240,12 +240,13 @@ def _staged(pr: film.Params, t):
 
 def _continuation(pr, cfg, x0=None, subcell=True):
     """Adaptive continuation in t (see :func:`_staged`, :func:`vjax._solve.continuation`): at most
-    ``stages`` Newton solves; with ``x0`` (``strategy="auto"``) a direct solve from it first."""
+    ``stages`` Newton solves; with ``x0`` (``strategy="auto"``) a direct solve from it first;
+    ``subcell`` as :func:`_solve_steady`."""
     n = pr.x0.shape[0] - 2
     guess = film.guess(_staged(pr, 0.0)[0], n, cfg)
     # the intermediate stages are only starts: their rupture on a face will do
-    return _solve.continuation(lambda x, t: film.newton(x, _staged(pr, t)[0], cfg, subcell=subcell & (t >= 2.0)), guess, x0,
-                               cfg.options.stages)
+    solve = lambda x, t: film.newton(x, _staged(pr, t)[0], cfg, subcell=subcell & (t >= 2.0))     # noqa: E731
+    return _solve.continuation(solve, guess, x0, cfg.options.stages)
 
 
 def _jfo_start(x, pr: film.Params, cfg: film.Config):
