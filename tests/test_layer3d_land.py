@@ -7,7 +7,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from vjax import Material
+from vjax import Material, bodies
 from vjax.layer3d import layer_modes
 from vjax.layer3d_land import dct1, idct1, land_operator, whirl_symbol
 from vjax.operator import ring_operator
@@ -137,7 +137,6 @@ def test_hole_axially_uniform_pressure_is_the_plane_hole_ring():
     reference length changes the j = 0 column only (the other columns agree to 1e-12, measured
     2.0e-15 of the peak; column 0 changes by 0.22 of it); a pressure
     varying along z does not give the slices (the other columns differ by more than 5%)."""
-    from vjax import bodies
     mat = Material.sls(1e8, 2e9, 0.01, 0.45)
     n, m, L = 32, 8, 0.08
     pt = np.random.default_rng(3).normal(size=n)
@@ -181,7 +180,6 @@ def test_hole_whirl_response_and_arguments():
     """The hole's whirl symbol at whirl 0 is its steady land operator (to round-off) and passes
     the body's ref_length (Body.land_whirl_symbol; measured 2.4e-16; with ref_length 1 m instead of
     0.2 m the symbol differs by 0.12 of its peak); a hole takes no thickness, a layer needs one."""
-    from vjax import bodies
     mat = Material.sls(1e8, 2e9, 0.01, 0.45)
     body = bodies.hole(mat, ref_length=0.2, axial="3d")
     p = jnp.asarray(np.random.default_rng(5).normal(size=(32, 9)))

@@ -110,9 +110,9 @@ def land_operator(kind: str, material: Material, R, thickness, length, n: int, m
     body, ``memory`` as :func:`vjax.operator.ring_operator`; ``ref_length`` (m) a hole's plane
     mode 1 reference length (:func:`vjax.bodies.hole`; the axially uniform column only)."""
     _check_kind(kind, thickness)
-    for name, val in (("ref_length", ref_length) if kind == "hole" else ("thickness", thickness),):
-        checks.positive(name, val)
-        checks.scalar(name, val)
+    name, val = ("ref_length", ref_length) if kind == "hole" else ("thickness", thickness)
+    checks.positive(name, val)
+    checks.scalar(name, val)
     if not isinstance(n, (int, np.integer)) or n < 4 or not isinstance(m, (int, np.integer)) or m < 2:
         raise ValueError(f"n >= 4 and m >= 2 must be integers, got n={n!r}, m={m!r}")
     checks.instance("material", material, Material, "a vjax.Material")
