@@ -1,0 +1,1 @@
+"""Material laws: viscoelastic solids (Prony, SLS, creep spectrum), shift laws, lubricants."""
