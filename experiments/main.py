@@ -51,13 +51,13 @@ from experiments import _common
 
 STAGES = [
     ("calibration", "experiments.main", "calibration_stage"),
-    ("foundation", "experiments.foundation_figures", "main"),
-    ("pin", "experiments.pin_figures", "main"),
-    ("roller", "experiments.roller_figures", "main"),
-    ("journal", "experiments.journal_figures", "main"),
-    ("bodies", "experiments.bodies_figures", "main"),
-    ("dynamics", "experiments.journal_dynamics", "main"),
-    ("bores", "experiments.journal_bores", "stage"),
+    ("foundation", "experiments.figures.foundation_figures", "main"),
+    ("pin", "experiments.figures.pin_figures", "main"),
+    ("roller", "experiments.figures.roller_figures", "main"),
+    ("journal", "experiments.figures.journal_figures", "main"),
+    ("bodies", "experiments.figures.bodies_figures", "main"),
+    ("dynamics", "experiments.figures.journal_dynamics", "main"),
+    ("bores", "experiments.figures.journal_bores", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (a full run on two
 # cores: roller 81 s, pin 57, journal 55, bodies 40, dynamics 24, bores 7, foundation 6,

@@ -1,9 +1,9 @@
 """vjax.sweep on JAX's distributed runtime: two processes on 127.0.0.1 (gloo collectives on
-CPU), launched by experiments/distributed_sweep.py, against one process; and a process that
+CPU), launched by experiments/benchmarks/distributed_sweep.py, against one process; and a process that
 dies mid-run stops the run with a message naming it, without a result file."""
 import pytest
 
-from experiments import distributed_sweep
+from experiments.benchmarks import distributed_sweep
 
 
 def test_two_processes_equal_one(tmp_path):

@@ -11,7 +11,9 @@ try:
 except ImportError:  # plain `pytest` puts tests/ on sys.path, `python -m pytest` the working dir
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from experiments import _common, bench_operator, foundation_figures, journal_bores, journal_dynamics  # noqa: E402
+from experiments import _common  # noqa: E402
+from experiments.benchmarks import bench_operator  # noqa: E402
+from experiments.figures import foundation_figures, journal_bores, journal_dynamics  # noqa: E402
 
 
 def _numeric_cells(path):
@@ -72,7 +74,7 @@ def test_roller_design_quick(tmp_path):
     """The gradient-vs-random-search design script runs end to end (one material, Z = 10,
     n = 128) and both methods use the same number of solver calls."""
     pytest.importorskip("scipy")
-    from experiments import design
+    from experiments.studies import design
     result = design.main(out_dir=tmp_path, quick=True, only="roller")
     gradient, random = result["roller"]
     assert gradient[1] == random[1] >= 2
@@ -85,7 +87,7 @@ def test_roller_design_quick(tmp_path):
 def test_torque_twin_quick(tmp_path):
     """The twin experiment writes its data, tables, refined material and plots, and both fits
     lower the torque misfit."""
-    from experiments import torque_twin
+    from experiments.studies import torque_twin
     res = torque_twin.main(out_dir=tmp_path, quick=True, scene="pin", steps=10)   # the pin compiles 2x faster
     for row in res["summary"]:
         assert row[2] < row[1]                     # chi2 fitted < chi2 start
@@ -96,7 +98,7 @@ def test_torque_twin_quick(tmp_path):
 
 
 def test_bodies_figures_quick(tmp_path):
-    from experiments import bodies_figures
+    from experiments.figures import bodies_figures
     report = bodies_figures.main(out_dir=tmp_path / "bodies", quick=True)
     assert all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]
     for name, _ in report.figures:

@@ -79,7 +79,7 @@ def test_smooth_fit_of_real_data_does_not_ring_and_beats_pyvisco(pyvisco_fits):
     assert n_smooth <= 3 and n_smooth == rep.errors["loss_extrema"]
     assert n_free > 3          # the free-time fit rings: the counter sees what the issue describes
     pytest.importorskip("pyvisco")
-    from experiments.dma_fit import run_pyvisco
+    from experiments.studies.dma_fit import run_pyvisco
     pv = run_pyvisco(table, 25.0, str(pyvisco_fits[0]))
     for k in ("storage_median", "storage_p90", "loss_median", "loss_p90"):
         assert rep.errors[k] <= pv[k], (k, rep.errors[k], pv[k])

@@ -168,11 +168,11 @@ def test_one_mode_matches_3d_finite_elements(kind, mesh):
     """n = 2, k R = 4, nu = 0.45, t/R = 0.25 (c 42% / 26% above the plane-strain layer's): a
     quarter-ring sector (symmetry planes theta = 0, pi/2) half a wavelength long (u_z = 0 on
     both ends), triquadratic hexahedra with curved geometry (scikit-fem,
-    experiments/layer3d_fem.py), r x theta x z elements as given: the surface displacement
+    experiments/studies/layer3d_fem.py), r x theta x z elements as given: the surface displacement
     within 0.5% of the peak at every node of the loaded surface (measured 0.30% liner, 0.23%
     sleeve; the experiment refines further)."""
     pytest.importorskip("skfem")
-    from experiments.layer3d_fem import CASE, fem_mode
+    from experiments.studies.layer3d_fem import CASE, fem_mode
     t0 = time.perf_counter()
     theta, z, u, _ = fem_mode(kind, CASE["n"], CASE["kR"], CASE["nu"], CASE["tau"], *mesh)
     seconds = time.perf_counter() - t0

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import vjax
-from experiments import persson as P
+from experiments.figures import persson as P
 from vjax import reference
 
 E, R, DR, NU = 1e6, 0.08, 4e-5, 0.5

@@ -18,7 +18,7 @@ the thesis HS bore, with its nested n = 64 start; ``journal_jfo``: rigid, JFO, f
 n = 128, four whirl frequencies) and ``fit`` (the smooth Prony + shift fit of vjax-fit on the
 shipped pyvisco example, no files).
 
-    python -m experiments.bench_compile [out_dir] [--baseline REF] [--repeats 3] [--only CASE ...]
+    python -m experiments.benchmarks.bench_compile [out_dir] [--baseline REF] [--repeats 3] [--only CASE ...]
 
 Writes ``bench_compile.csv``, ``bench_compile.md`` and ``bench_compile.png`` into
 ``out_dir`` (default ``experiments/out/bench_compile``).
@@ -36,7 +36,7 @@ from pathlib import Path
 
 from experiments import _common
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]   # the repository root
 
 SETUP = {
     "pin": ("m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)",

@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.journal_figures [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.journal_figures [out_dir] [--quick]
 
 Thesis case (Section 3.2.2, docs/theory.md §11): R_B = 0.1 m, c = 5e-4 m (R_J = R_B - c),
 eta = 1e-3 Pa s, standard linear solid Einf = 100 MPa, E0 = Einf/100 = 1 MPa, relaxation

@@ -1,10 +1,10 @@
-"""ROSS's PlainJournal on the rigid case of ``experiments/journal_finite.py``, timed: a peer run.
+"""ROSS's PlainJournal on the rigid case of ``experiments/studies/journal_finite.py``, timed: a peer run.
 
 ROSS 3.x (``ross-rotordynamics``) needs Python >= 3.13, so it lives in a side venv and this script
 runs in its interpreter; it imports only the standard library, numpy and ross (not vjax, not jax)::
 
     python3.13 -m venv /tmp/ross-venv && /tmp/ross-venv/bin/pip install ross-rotordynamics
-    /tmp/ross-venv/bin/python experiments/ross_peer.py --load 16122.75 [--n-theta 40 --n-z 20 --ny 10]
+    /tmp/ross-venv/bin/python experiments/peers/ross_peer.py --load 16122.75 [--n-theta 40 --n-z 20 --ny 10]
         [--groove opposite-load | --groove max-film --attitude 48.5]    # or --eccentricity 0.65
 
 It prints one line of JSON (ROSS's own chatter goes to stderr). ``journal_finite.py`` runs it

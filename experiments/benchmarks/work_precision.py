@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.work_precision [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.benchmarks.work_precision [out_dir] [--quick]
 
 Ladders (float64, one solve per point, the median of warm calls; the first call, i.e.
 tracing + compilation + one run, is reported separately as ``compile_s``):
@@ -16,13 +16,13 @@ tracing + compilation + one run, is reported separately as ``compile_s``):
   differs from the linear theory by O(dR/R) (a floor of about 2e-4 here); the same
   problem linearized (interference e cos(theta) - dR) through ``solve_contact`` with the
   same operator isolates the discretization error; (b) the thesis's viscoelastic case (SLS, omega~ = 1,
-  :mod:`experiments.bench_pin`) against the finest grid: relative friction-torque error;
+  :mod:`experiments.benchmarks.bench_pin`) against the finest grid: relative friction-torque error;
   (c) solver tolerance ``options.tol`` at the default n = 1024.
-- **roller** the thesis bearing (:mod:`experiments.bench_roller`, Z = 9, F~ = 6.5e-3) at
+- **roller** the thesis bearing (:mod:`experiments.benchmarks.bench_roller`, Z = 9, F~ = 6.5e-3) at
   omega~ = 1.4 against the finest grid: max roller-load error / max load, torque error;
   Newton tolerance ladder at the default n = 1024.
 - **journal** (a) rigid bearing with full-Sommerfeld conditions against the closed form
-  W(eps) (eps = 0.6): |eps - 0.6|; (b) the thesis's HS case (:mod:`experiments.bench_journal`)
+  W(eps) (eps = 0.6): |eps - 0.6|; (b) the thesis's HS case (:mod:`experiments.benchmarks.bench_journal`)
   against the finest grid: eps and relative bearing-torque errors; (c) Newton tolerance at
   the default n = 256.
 - **DMA fit** (pyvisco data, T_ref = 25 C, WLF): Prony density (terms per decade, N = number of
@@ -113,7 +113,8 @@ def pin_rows(quick):
     import jax.numpy as jnp
     import numpy as np
     import vjax
-    from experiments import bench_pin, persson
+    from experiments.benchmarks import bench_pin
+    from experiments.figures import persson
     from vjax import reference
     rows = []
     E, R, DR, Ft = 1e6, 0.08, 4e-5, 1e-2
@@ -183,7 +184,7 @@ def pin_rows(quick):
 # ---------------------------------------------------------------------- roller
 def roller_rows(quick):
     import numpy as np
-    from experiments import bench_roller
+    from experiments.benchmarks import bench_roller
     rows = []
     w = bench_roller.shaft(1.4)
     ns = (16,) if quick else (128, 256, 512, 1024, 2048)
@@ -222,7 +223,7 @@ def roller_rows(quick):
 def journal_rows(quick):
     import numpy as np
     import vjax
-    from experiments import bench_journal
+    from experiments.benchmarks import bench_journal
     rows = []
     Rj, Cj, ETAj, WJ = 0.05, 5e-5, 0.01, 100.0
     U = WJ * (Rj - Cj)
@@ -320,7 +321,7 @@ def _plot(rows, scene, path):
 
 
 def summary(rows):
-    lines = ["# Work-precision report (`python -m experiments.work_precision`)", "",
+    lines = ["# Work-precision report (`python -m experiments.benchmarks.work_precision`)", "",
              "Median warm time of one solve (float64, shared 2-core CPU; compile = first call, separate).", "",
              "## Observed convergence orders (fit of log error against log N)", "",
              "| scene | series | N range | order | error measure |", "|---|---|---|---|---|"]

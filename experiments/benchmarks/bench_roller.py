@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.bench_roller [out_dir] [--quick] [--no-vmap] [--errors-only]
+    PYTHONPATH=. python -m experiments.benchmarks.bench_roller [out_dir] [--quick] [--no-vmap] [--errors-only]
                                                     [--baseline REF]
 
 Thesis case (R_O = 6 mm, R_I = 4 mm, D = 2 mm, Z = 9, zero clearance, SLS E0 = 1 MPa,
@@ -95,7 +95,10 @@ def _time(fn, arg, repeats):
 
 
 _BASELINE = """
-from experiments import bench_roller as br
+try:
+    from experiments.benchmarks import bench_roller as br
+except ImportError:   # a baseline commit from before experiments/ had folders
+    from experiments import bench_roller as br
 import jax.numpy as jnp, numpy as np
 ws = jnp.asarray(br.shaft(np.logspace(-4, 4, {nw})))
 first, med, res = br._time(br.make({n})["scan"], ws, 2)

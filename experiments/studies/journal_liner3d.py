@@ -3,7 +3,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.journal_liner3d [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.studies.journal_liner3d [out_dir] [--quick]
 
 Case: R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s, groove fixed opposite the
 load at 1e4 Pa, Reynolds conditions, 32 theta cells by m = 16, 32, 48 axial intervals (--quick:

@@ -1,6 +1,6 @@
 """The 3D bonded layer's modal compliance (vjax.layer3d) against 3D finite elements (scikit-fem).
 
-    PYTHONPATH=. python -m experiments.layer3d_fem [out_dir]
+    PYTHONPATH=. python -m experiments.studies.layer3d_fem [out_dir]
 
 One mode p = cos(n theta) cos(k z) on a sector of the layer bounded by symmetry planes:
 theta in [0, pi/n] (the planes theta = 0 and pi/n are planes of symmetry of cos(n theta):

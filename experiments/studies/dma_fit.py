@@ -17,7 +17,7 @@ and Arrhenius constants with their one-sigma errors. The relaxation example
 Writes ``<out_dir>/dma_fit.csv``, ``dma_fit.md`` and the calibration plots. pyvisco is not a
 dependency: without it the pyvisco rows are skipped.
 
-    python experiments/dma_fit.py            # or: main(out_dir=..., quick=True)
+    python experiments/studies/dma_fit.py            # or: main(out_dir=..., quick=True)
 """
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ jax.config.update("jax_enable_x64", True)
 
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
 from fitting import calibrate, dma, figures  # noqa: E402
 
 DATASETS = [("pyvisco_freq_user_raw", lambda: dma.default_data("pyvisco"), 25.0, {}),

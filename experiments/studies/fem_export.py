@@ -12,12 +12,12 @@ nu = 0.45), then what ``vjax-export`` writes by default:
 
 Then, where ``import pyvisco`` works (``pip install pyvisco``; it is in the ``experiments``
 extra), pyvisco's default pipeline on the same frequency data in the same run (its own
-master curve and term count N, :func:`experiments.dma_fit.run_pyvisco`), and vjax at N terms:
+master curve and term count N, :func:`experiments.studies.dma_fit.run_pyvisco`), and vjax at N terms:
 the compact refit (:func:`fitting.compact.fit_terms` to the DMA points) of the table-law fit
 (one shift factor per temperature, as pyvisco's) and of the WLF fit, and ``vjax-fit
 --max-terms N`` (WLF, end to end). Each scored with its own shift factors on the raw points. Writes ``<out_dir>/fem_export.md``.
 
-    python -m experiments.fem_export [out_dir]
+    python -m experiments.studies.fem_export [out_dir]
 """
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ jax.config.update("jax_enable_x64", True)
 
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
 from fitting import calibrate, compact, dma, evaluate, export  # noqa: E402
 from fitting.export import CARD_LIMIT  # noqa: E402
 
@@ -76,7 +76,7 @@ def main(out_dir="experiments/out"):
         print(f"[{name}] fit {time.perf_counter() - t0:.1f} s; " + " | ".join(notes))
         if rep.domain != "frequency":
             continue
-        from experiments.dma_fit import run_pyvisco
+        from experiments.studies.dma_fit import run_pyvisco
         table = dma.read(paths)
         pv = run_pyvisco(table, T_ref, out_dir)
         if pv is None:

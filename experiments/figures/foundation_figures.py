@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.foundation_figures [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.foundation_figures [out_dir] [--quick]
 
 **Deformed rings (Figs. 2.3, A.4, A.6).** A unit pressure (1 Pa) acts on one element,
 centred at theta = 0, of a ring of radius R = 0.08 m cut into N = 400 elements (element

@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.stability [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.benchmarks.stability [out_dir] [--quick]
 
 Every case runs with ``throw=False`` and reports: converged, iterations, residual, the warm
 wall time of the forward solve, whether every floating value of the result is finite, and
@@ -339,7 +339,7 @@ def _float32_worker(quick):
 
 def float32_rows(quick):
     env = dict(os.environ, JAX_ENABLE_X64="0", PYTHONPATH=os.getcwd())
-    code = f"import warnings; warnings.simplefilter('ignore'); from experiments import stability; " \
+    code = f"import warnings; warnings.simplefilter('ignore'); from experiments.benchmarks import stability; " \
            f"stability._float32_worker({quick!r})"
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=3600)
     line = next((l for l in p.stdout.splitlines() if l.startswith("JSON")), None)
@@ -442,7 +442,7 @@ def _write(out, rows, t_start):
                                 "scalar summary w.r.t. load and material (or viscosity)",
                                 f"{len(rows)} cases, {len(bad)} not converged or not finite; "
                                 f"total wall time {time.perf_counter() - t_start:.0f} s"])
-    md = ["# Stiff and extreme cases (`python -m experiments.stability`)", "",
+    md = ["# Stiff and extreme cases (`python -m experiments.benchmarks.stability`)", "",
           f"{len(rows)} cases, {len(rows) - len(bad)} converged with finite values and gradients, "
           f"{len(bad)} reported failures. Times are warm forward solves on a shared 2-core CPU.", "",
           "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]

@@ -33,7 +33,7 @@ the liner's deformation up to 0.16 c, which lowers the torque 2-8 % below the ri
 its hysteresis at most 1 % of it; the quick run skips the gradient check, which
 tests/test_torque_journal.py makes). Outputs are ``torque_twin_<scene>_*`` (csv, png, json, txt).
 
-Run: ``python -m experiments.torque_twin [--quick] [--scene pin|roller|journal]``.
+Run: ``python -m experiments.studies.torque_twin [--quick] [--scene pin|roller|journal]``.
 """
 from __future__ import annotations
 

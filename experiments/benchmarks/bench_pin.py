@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.bench_pin [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.benchmarks.bench_pin [out_dir] [--quick]
 
 **Pin in a hole**, the thesis's viscoelastic case (R = 0.08 m, R' = 0.075 m, SLS E0 = 1 MPa,
 Einf = 10 MPa, tau = 0.01 s, nu = 0.5, F~ = 3.5e-2, omega~ = omega tau = 1, periodic
@@ -32,7 +32,7 @@ applications, gradient < 3x forward, compile < 10 s.
 periodic cell of length L = 1 m (ring radius L/2pi), rigid cylinder of radius 0.5 m (parabolic
 profile, as Hertz), E = 1 MPa, nu = 0.3, load such that the Hertz half-width is a =
 0.025 L. We report the errors of the peak pressure and of the half-width (edge found by
-extrapolating p^2 to zero, :func:`experiments.persson.edge_angle`) against Hertz, and the
+extrapolating p^2 to zero, :func:`experiments.figures.persson.edge_angle`) against Hertz, and the
 median time, for N = 2^10 ... 2^16. The vjax kernel is the log kernel truncated to the
 cell, which is exact for every pair of points in one contact (|x - x'| < L/2). The same
 problem goes to **tamaas** (``PolonskyKeerRey``, basic_1d, tol 1e-12) when it is installed.
@@ -67,7 +67,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
-from experiments import persson  # noqa: E402
+from experiments.figures import persson  # noqa: E402
 from vjax import reference  # noqa: E402
 
 

@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.journal_finite [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.studies.journal_finite [out_dir] [--quick]
 
 Writes ``journal_finite.txt`` (and prints it): Raimondi and Boyd's table (L/D = 1, 0.5,
 Reynolds conditions) on two grids; Ocvirk's short bearing (load ratio at L/D = 0.05, 0.1,
@@ -20,7 +20,7 @@ R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 ROSS: if the environment variable ``VJAX_ROSS_PYTHON`` names a Python interpreter with ROSS 3.x
 (``ross-rotordynamics``; it needs Python >= 3.13, so a side venv), the rigid point of the timings
 is also solved by ROSS's ``PlainJournal`` in that interpreter, a separate process
-(``experiments/ross_peer.py``), on vjax's largest rigid grid and on ROSS's default grid (40 x 20):
+(``experiments/peers/ross_peer.py``), on vjax's largest rigid grid and on ROSS's default grid (40 x 20):
 its first and warm times (without its import) and its eccentricity and attitude next to vjax's.
 Unset, or if that run fails, the text says ROSS was not timed and why.
 """
@@ -48,13 +48,13 @@ RAIMONDI_BOYD = {1.0: [(0.2, 0.631, 74.02, 12.8, 3.59, 0.280, 0.529), (0.4, 0.26
 
 
 def ross_lines(load, eccentricity, attitude_deg, grid, ross_grids=((256, 64), (40, 20)), timeout=900):
-    """Lines on ROSS's PlainJournal for the rigid point (``experiments/ross_peer.py`` run by
+    """Lines on ROSS's PlainJournal for the rigid point (``experiments/peers/ross_peer.py`` run by
     ``$VJAX_ROSS_PYTHON``, one process per grid in ``ross_grids``) next to vjax's ``eccentricity``
     and ``attitude_deg`` on ``grid``, or a line saying why ROSS was not timed. Never raises."""
     python = os.environ.get("VJAX_ROSS_PYTHON")
     if not python:
         return ["ROSS was not timed: VJAX_ROSS_PYTHON is not set (see the module docstring)."]
-    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ross_peer.py")
+    script = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "peers", "ross_peer.py")
     head, lines = [], []
     for n, m in ross_grids:
         try:
@@ -65,7 +65,7 @@ def ross_lines(load, eccentricity, attitude_deg, grid, ross_grids=((256, 64), (4
                 raise RuntimeError(f"exit status {run.returncode}: {(run.stderr.strip().splitlines() or [''])[-1]}")
             r = json.loads(run.stdout.strip().splitlines()[-1])
         except Exception as e:  # the benchmark goes on without ROSS
-            lines.append(f"ROSS {n}x{m} was not timed: {python} experiments/ross_peer.py failed: {e}")
+            lines.append(f"ROSS {n}x{m} was not timed: {python} experiments/peers/ross_peer.py failed: {e}")
             continue
         head = [f"ROSS {r['ross_version']} PlainJournal, the same rigid point (load {load:.1f} N), in a separate "
                 f"process (Python {r['python']}; its times include no import, its first is its process's first "

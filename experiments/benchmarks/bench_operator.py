@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.bench_operator [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.benchmarks.bench_operator [out_dir] [--quick]
 
 For N = 2^8 ... 2^16 elements (hole kernel, R = 0.08 m, omega = 100 rad/s) it times, on the
 default JAX device, in float64:

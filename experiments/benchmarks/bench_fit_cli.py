@@ -10,7 +10,7 @@ plots written):
   with a new empty cache for the first call;
 * the second call again with ``--no-plots`` (the six PNGs: matplotlib's import and drawing);
 * ``vjax-fit --no-cache`` (the behaviour before the cache);
-* pyvisco's default pipeline on the same data (:func:`experiments.dma_fit.run_pyvisco`), in
+* pyvisco's default pipeline on the same data (:func:`experiments.studies.dma_fit.run_pyvisco`), in
   this process, when pyvisco is installed;
 * with ``--baseline REF``: the second call of the code at git commit REF (a temporary
   worktree, its own cache), each repeat right after today's second call (the machine's
@@ -19,7 +19,7 @@ plots written):
 The issue's target: second call <= 3 x the import time. Writes ``bench_fit_cli.csv`` and
 ``bench_fit_cli.md`` to ``out_dir``. ``quick``: one repeat.
 
-    python -m experiments.bench_fit_cli [--quick] [--baseline REF] [--out-dir experiments/out]
+    python -m experiments.benchmarks.bench_fit_cli [--quick] [--baseline REF] [--out-dir experiments/out]
 """
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ import time
 
 from experiments import _common
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # the repository root
 
 
 def _run(args, env, root=ROOT) -> float:
@@ -78,7 +78,7 @@ def main(out_dir="experiments/out", quick=False, baseline=None):
             nocache.append(_run(fit + ["--no-cache"], _env(cache)))
         size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(os.path.join(work, "cache0")) for f in fs)
         files = sum(len(fs) for _, _, fs in os.walk(os.path.join(work, "cache0")))
-        from experiments.dma_fit import run_pyvisco
+        from experiments.studies.dma_fit import run_pyvisco
         pv = [run_pyvisco(dma.read(data), 25.0, work) for _ in range(repeats)]
     med = statistics.median
     rows = [("import vjax, fitting", med(imp), min(imp), repeats),

@@ -1,6 +1,6 @@
 """How many Prony terms does a smooth loss modulus take? (issue 26)
 
-For each shipped data set (the WLF fits of :mod:`experiments.fem_export`): the decades of the
+For each shipped data set (the WLF fits of :mod:`experiments.studies.fem_export`): the decades of the
 data's reduced window over which the full smooth fit's log-log loss slope is below 0.07 (where
 a Maxwell sum 1 decade apart, ripple slope 0.15, adds extrema), then for n = 20 .. 60 the
 series :func:`fitting.compact.placed_terms` (times placed by the ripple rule, moduli by NNLS on
@@ -9,7 +9,7 @@ loss-modulus extrema over the window and storage / loss medians on the DMA point
 full fit's. Printed: the fewest n with at most max(3, the full fit's) extrema and both medians
 within 1.5x.
 
-    python -m experiments.compact_ripple [out_dir]
+    python -m experiments.studies.compact_ripple [out_dir]
 """
 from __future__ import annotations
 
@@ -19,14 +19,14 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
 from fitting import compact, evaluate, export  # noqa: E402
 
 
 def main(out_dir="experiments/out"):
     import jax
     jax.config.update("jax_enable_x64", True)
-    from experiments.fem_export import DATASETS, NU, _fit
+    from experiments.studies.fem_export import DATASETS, NU, _fit
     os.makedirs(out_dir, exist_ok=True)
     for i, (name, paths, T_ref) in enumerate(DATASETS):
         path, _ = _fit(paths, T_ref, out_dir, f"ripple_{i}")

@@ -3,7 +3,7 @@ torque-versus-shaft-speed curve at two temperatures (after Figs. 2.24-2.29).
 
 Run::
 
-    PYTHONPATH=. python -m experiments.roller_figures [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.roller_figures [out_dir] [--quick]
 
 **Thesis case** (Section 2.3.2): R_O = 6 mm, R_I = 4 mm, D = 2 mm, Z = 9, zero clearance,
 outer ring fixed, both rings SLS E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, nu = 0.5,

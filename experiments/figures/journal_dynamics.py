@@ -4,7 +4,7 @@ threshold of a rigid rotor on them.
 
 Run::
 
-    PYTHONPATH=. python -m experiments.journal_dynamics [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.journal_dynamics [out_dir] [--quick]
 
 Cases (per unit length; bearings of length 0.05 m for the rotor):
 

@@ -3,7 +3,7 @@ item 5): where the rupture boundary falls within its cell.
 
 Run::
 
-    PYTHONPATH=. python -m experiments.rupture_convergence [out_dir] [--quick] [--no-2d] [--no-1d]
+    PYTHONPATH=. python -m experiments.studies.rupture_convergence [out_dir] [--quick] [--no-2d] [--no-1d]
 
 Writes ``rupture_convergence.txt`` (and prints it):
 

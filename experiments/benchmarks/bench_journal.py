@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.bench_journal [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.benchmarks.bench_journal [out_dir] [--quick]
 
 Case: the thesis's HS bearing (Fig. 3.5 HS, periodic memory): R_B = 0.1 m, c = 5e-4 m,
 eta = 1e-3 Pa s, SLS E0 = 1 MPa, Einf = 100 MPa, tau = 1 s, nu = 0.5, F~ = 2.2e-3,

@@ -21,7 +21,7 @@ Two partitionings with 2 devices: ``shard_map`` (vjax.sweep's default; each devi
 block independently) and ``auto`` (XLA SPMD partitioning of the jitted vmap, whose
 vmapped solver loops then synchronise the devices at every iteration).
 
-Run: ``python -m experiments.bench_sweep [--quick]``.
+Run: ``python -m experiments.benchmarks.bench_sweep [--quick]``.
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ from pathlib import Path
 
 from experiments import _common
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]   # the repository root
 
 
 def pin_design(points_per_axis: int, n: int, points: int | None = None):
@@ -89,7 +89,7 @@ def _worker(points_per_axis: int, n: int, chunk: int, partition: str = "shard_ma
 def _run(devices: int, points_per_axis: int, n: int, chunk: int, partition: str) -> dict:
     env = dict(os.environ, XLA_FLAGS=f"--xla_force_host_platform_device_count={devices}", JAX_PLATFORMS="cpu",
                PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    cmd = [sys.executable, "-m", "experiments.bench_sweep", "--worker", str(points_per_axis), str(n), str(chunk),
+    cmd = [sys.executable, "-m", "experiments.benchmarks.bench_sweep", "--worker", str(points_per_axis), str(n), str(chunk),
            "--partition", partition]
     r = subprocess.run(cmd, env=env, cwd=ROOT, capture_output=True, text=True, timeout=1800)
     if r.returncode != 0:

@@ -2,7 +2,7 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.journal_bores [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.journal_bores [out_dir] [--quick]
 
 The bearing: R = 50 mm, c = 50 um, eta = 0.01 Pa s, rigid journal turning, bore at rest, n =
 256, Reynolds conditions, default options. Two bores, Prony series with E0 and three arms of

@@ -1,6 +1,6 @@
 """Bodies of finite thickness against the thesis's infinite plane (bushings, liners).
 
-    PYTHONPATH=. python -m experiments.bodies_figures [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.bodies_figures [out_dir] [--quick]
 
 1. The thesis's test bearing as built (Section 2.3.3): a polymer bushing of 12 mm bore and
    16 mm outside diameter (a 2 mm wall) pressed into a rigid steel holder, 9 rigid needles of

@@ -2,11 +2,11 @@
 
 Run::
 
-    PYTHONPATH=. python -m experiments.pin_figures [out_dir] [--quick]
+    PYTHONPATH=. python -m experiments.figures.pin_figures [out_dir] [--quick]
 
 **Figs. 2.5-2.6, elastic validation** (R = 0.08 m, dR = 4e-5 m, E = 1 MPa, nu = 0.5):
 pressure p/E versus theta at several loads F~ = F/(E R), numerics (``pin_in_hole``, n =
-2048) against the analytical solution of :mod:`experiments.persson`, and the load parameter
+2048) against the analytical solution of :mod:`experiments.figures.persson`, and the load parameter
 E' dR/F (E' = E/(1-nu^2)) versus b = tan(alpha/2) up to the neat-fit angle. The numerics use
 ``persson.small_displacement_pin``: the rigid-body reference (ref_length) is chosen so that
 the pin offset equals dR, which removes the finite-displacement terms of pin_in_hole (exact
@@ -40,7 +40,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
-from experiments import persson  # noqa: E402
+from experiments.figures import persson  # noqa: E402
 from vjax import reference  # noqa: E402
 
 

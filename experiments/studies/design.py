@@ -42,7 +42,7 @@ of :func:`vjax.roller_bearing`. Baseline: random search over all four variables 
 and Z uniformly) with the same number of solver calls. A solver call is one design
 evaluation (four bearing solves); an evaluation where a solve fails is infeasible.
 
-Run: ``python -m experiments.design [--quick] [--only journal|finite|roller]``.
+Run: ``python -m experiments.studies.design [--quick] [--only journal|finite|roller]``.
 """
 from __future__ import annotations
 
@@ -344,7 +344,7 @@ def roller_design(out, quick=False):
     import jax.numpy as jnp
     import vjax
     from scipy.optimize import minimize
-    from experiments.torque_twin import twin_material
+    from experiments.studies.torque_twin import twin_material
 
     c = dict(ROLLER)
     n = 128 if quick else 2048

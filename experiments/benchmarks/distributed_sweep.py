@@ -2,11 +2,11 @@
 
 Run::
 
-    python -m experiments.distributed_sweep --processes 2 [--points 1000] [--n 256] [--out DIR]
+    python -m experiments.benchmarks.distributed_sweep --processes 2 [--points 1000] [--n 256] [--out DIR]
 
 It starts ``--processes`` Python processes that join one JAX run over 127.0.0.1 (process 0
 is the coordinator; CPU collectives over gloo), each evaluating its share of every chunk of
-the pin-joint design sweep of :mod:`experiments.bench_sweep` (``--points`` solves of
+the pin-joint design sweep of :mod:`experiments.benchmarks.bench_sweep` (``--points`` solves of
 :func:`vjax.pin_in_hole`), the results gathered to every process; then the same points in
 one process. It checks that the results agree (to 1e-12; they are bit-identical when every
 process runs the same XLA code) and prints points per second for 1 and P processes
@@ -41,7 +41,7 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]   # the repository root
 CHUNK = 100
 
 
@@ -59,7 +59,7 @@ def _worker(process_id: int, processes: int, port: int, points: int, n: int, res
     import numpy as np
 
     import vjax
-    from experiments import bench_sweep
+    from experiments.benchmarks import bench_sweep
 
     if processes > 1:
         vjax.initialize_processes(f"127.0.0.1:{port}", processes, process_id, heartbeat_timeout=10)
@@ -88,7 +88,7 @@ def launch(processes: int, points: int, n: int, result_path: str | None, timeout
     env["XLA_FLAGS"] = os.environ.get("VJAX_XLA_FLAGS", "")
     procs = []
     for i in range(processes):
-        cmd = [sys.executable, "-m", "experiments.distributed_sweep", "--worker", str(i), "--processes",
+        cmd = [sys.executable, "-m", "experiments.benchmarks.distributed_sweep", "--worker", str(i), "--processes",
                str(processes), "--port", str(port), "--points", str(points), "--n", str(n)]
         if result_path:
             cmd += ["--result", result_path]
