@@ -238,8 +238,10 @@ def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic"):
 def water_viscosity(T):
     """Dynamic viscosity of water (Pa s) at ``T`` (C), Vogel's equation
     eta = 2.414e-5 * 10^(247.8 / (T + 273.15 - 140)) (1.00e-3 at 20 C, 0.65e-3 at 40 C,
-    0.40e-3 at 70 C; within a few % of tabulated values from 0 to 100 C)."""
-    return 2.414e-5 * 10.0 ** (247.8 / (T + 273.15 - 140.0))
+    0.40e-3 at 70 C; within 1 % of IAPWS's from 10 to 100 C): :meth:`Lubricant.water
+    <vjax.materials.lubricant.Lubricant.water>`'s viscosity."""
+    from vjax.materials.lubricant import Lubricant
+    return Lubricant.water().viscosity(T)
 
 
 def oil_viscosity(nu40, nu100, density=860.0):
@@ -248,18 +250,20 @@ def oil_viscosity(nu40, nu100, density=860.0):
     oil's kinematic viscosities ``nu40`` and ``nu100`` (cSt = mm^2/s) at 40 and 100 C (its data
     sheet's), times its ``density`` (kg/m^3, held constant). An ISO VG 32 oil of viscosity
     index about 100: ``oil_viscosity(32, 5.4)``, 0.0275 Pa s at 40 C and 0.0096 at 70 C.
-    Traceable in T (jit, grad)."""
+    Traceable in T (jit, grad). The function delegates to (and carries as ``.lubricant``) a
+    :meth:`Lubricant.walther <vjax.materials.lubricant.Lubricant.walther>`."""
     from vjax import checks
+    from vjax.materials.lubricant import Lubricant
     for name, v in (("nu40", nu40), ("nu100", nu100), ("density", density)):
         checks.positive(name, v)
     if not nu100 < nu40:
         raise ValueError(f"nu100 must be below nu40 (an oil thins when heated), got nu40={nu40}, nu100={nu100}")
-    z40, z100 = (math.log10(math.log10(v + 0.7)) for v in (nu40, nu100))
-    slope = (z40 - z100) / math.log10(373.15 / 313.15)
+    lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=density)
 
     def viscosity(T):
-        return density * 1e-6 * (10.0 ** (10.0 ** (z40 - slope * jnp.log10((T + 273.15) / 313.15))) - 0.7)
+        return lubricant.viscosity(T)
     viscosity.__name__ = f"oil_viscosity({nu40:g}, {nu100:g}, {density:g})"
+    viscosity.lubricant = lubricant
     return viscosity
 
 
