@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import contact
+from vjax.contact import solve as contact
 
 N = 512
 

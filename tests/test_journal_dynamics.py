@@ -16,8 +16,10 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import JournalOptions, _solve, journal_bearing, journal_coefficients, reference, reynolds
-from vjax import _journal_film, journal_dynamics
+from vjax import JournalOptions, journal_bearing, journal_coefficients, reference, reynolds
+from vjax import journal_dynamics
+from vjax._core import solve as _solve
+from vjax.scenes.journal.long import coefficients as long_coefficients, film as _journal_film
 from vjax.operator import grid
 
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
@@ -168,7 +170,7 @@ def test_viscoelastic_liner_limits():
     x0 = jnp.concatenate([visco.steady.pressure / pr.p_ref,
                           jnp.stack([visco.steady.eccentricity, visco.steady.attitude_angle])])
     glass_body = vjax.liner(vjax.Material.elastic(1e8, 0.5), 0.01)
-    Z_glassy = journal_dynamics._impedance(x0, pr, cfg, ((glass_body, pr.R, 0.0), (None, pr.RJ, 0.4)),
+    Z_glassy = long_coefficients._impedance(x0, pr, cfg, ((glass_body, pr.R, 0.0), (None, pr.RJ, 0.4)),
                                            jnp.asarray(W))
     Zv, Zr = np.asarray(visco.impedance), np.asarray(rubbery.impedance)
     assert np.max(np.abs(Zv[0] - Zr[0])) < 1e-4 * np.abs(Zr[0]).max()

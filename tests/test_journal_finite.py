@@ -17,7 +17,9 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import FiniteJournalOptions, JournalOptions, _film2d, journal_bearing, journal_finite, reference
+from vjax import FiniteJournalOptions, JournalOptions, journal_bearing, journal_finite, reference
+from vjax.films import film2d as _film2d
+from vjax.scenes.journal.finite import film as finite_film, setup as finite_setup
 
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 V = 0.5 * WJ * (R - C)
@@ -83,13 +85,13 @@ def _sommerfeld_force(n, m, LD=1.0):
     """Film force (N, grid axes) of the full-Sommerfeld film at a fixed journal position
     (eps = 0.5 along 60 degrees, no groove): the scene's own cell equations, solved directly
     (linear in p)."""
-    pr, cfg = journal_finite.setup(R, C, ETA, 1.0, LD * D, omega_shaft=WJ, cavitation="sommerfeld",
+    pr, cfg = finite_setup.setup(R, C, ETA, 1.0, LD * D, omega_shaft=WJ, cavitation="sommerfeld",
                                    supply_angle=None, options=FiniteJournalOptions(n=n, m=m))
     e = 0.5 * jnp.array([np.cos(np.pi / 3), np.sin(np.pi / 3)])
-    res = lambda pz: journal_finite.cell_residual(jnp.concatenate([pz, e]), pr, cfg)[0]
+    res = lambda pz: finite_film.cell_residual(jnp.concatenate([pz, e]), pr, cfg)[0]
     zero = jnp.zeros(n * (m - 1))
     pz = jnp.linalg.solve(jax.jacfwd(res)(zero), -res(zero))
-    return journal_finite.cell_residual(jnp.concatenate([pz, e]), pr, cfg)[1]
+    return finite_film.cell_residual(jnp.concatenate([pz, e]), pr, cfg)[1]
 
 
 def test_second_order_in_both_directions():
@@ -334,7 +336,7 @@ def test_coefficients_against_nonlinear_solves(tilted):
     """Central differences of the nonlinear film force with the journal held at perturbed
     positions and velocities (Newton on the cell equations, :func:`journal_finite.force_at`), 1e-3."""
     q, _, co = tilted
-    pr, cfg = journal_finite.setup(R, C, ETA, jnp.asarray(q[2:]), D, omega_shaft=WJ, tilt=GAMMA, options=OPT)
+    pr, cfg = finite_setup.setup(R, C, ETA, jnp.asarray(q[2:]), D, omega_shaft=WJ, tilt=GAMMA, options=OPT)
     frame = float(pr.frame)
     rot = np.array([[np.cos(frame), -np.sin(frame)], [np.sin(frame), np.cos(frame)]])
     x0 = jnp.concatenate([(co.steady.pressure[:, 1:-1] / pr.p_ref).ravel(),
@@ -481,7 +483,7 @@ def test_jfo_coefficients_meet_the_long_bearing_and_the_static_stiffness(jfo_lon
     assert np.max(np.abs(K50[2] - K50[0])) > 0.05 * np.abs(K50[0]).max()
     # at rest: the static stiffness of the position-controlled film
     co = finite_[50.0]
-    pr, cfg = journal_finite.setup(R, C, ETA, W1 * 50.0 * D, 50.0 * D, omega_shaft=WJ, options=JFO_OPT, **JFO)
+    pr, cfg = finite_setup.setup(R, C, ETA, W1 * 50.0 * D, 50.0 * D, omega_shaft=WJ, options=JFO_OPT, **JFO)
     frame = float(pr.frame)
     rot = np.array([[np.cos(frame), -np.sin(frame)], [np.sin(frame), np.cos(frame)]])
     s = co.steady

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import vjax
-from vjax import JournalOptions, _banded, journal_bearing
+from vjax import JournalOptions, journal_bearing
+from vjax.films import banded as _banded
 
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 SLS = vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4)

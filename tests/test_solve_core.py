@@ -1,10 +1,10 @@
-"""The solver core's Newton with kept (Broyden-updated) Jacobians, vjax._solve.newton(jacobian=)."""
+"""The solver core's Newton with kept (Broyden-updated) Jacobians, vjax._core.solve.newton(jacobian=)."""
 import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from vjax import _solve
+from vjax._core import solve as _solve
 
 A = jnp.array([[4.0, 1.0, 0.0], [1.0, 3.0, 0.5], [0.0, 0.5, 2.0]])
 B = jnp.array([1.0, -2.0, 0.5])

@@ -10,32 +10,50 @@ to be float64, so enable it **before any JAX computation**::
 Without it everything runs in float32 (no NaN, lower accuracy); vjax warns once on import.
 The command-line tools, experiments and tests enable float64 themselves.
 """
+import sys as _sys
 import warnings as _warnings
 
 import jax as _jax
 
-from .material import Arrhenius, CreepSpectrum, Material, WLF
-from .operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
-from . import bodies, green
-from .bodies import Body, disc, half_plane, hole, liner, sleeve
-from ._solve import ConvergenceError
+from ._core import checks
+from ._core.solve import ConvergenceError
+from .materials import Arrhenius, CreepSpectrum, Material, WLF
+from . import bodies
+from .bodies import Body, disc, green, half_plane, hole, land, layer3d, liner, sleeve
+from .bodies.operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
 from .contact import ContactOptions, ContactSolution, solve_contact
-from .pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
-from .journal import JournalOptions, JournalResult, journal_bearing
-from .journal_finite import FiniteJournalOptions, FiniteJournalResult
-from .journal_dynamics import JournalCoefficients, journal_coefficients, stability_threshold
-from .roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
+from .films import reynolds
+from .scenes.pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
+from .scenes.roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
+from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalCoefficients, JournalOptions,
+                             JournalResult, journal_bearing, journal_coefficients, stability_threshold,
+                             tilt_coefficients)
 from . import reference
 from .sweep import initialize_processes, sweep
 
 __all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
-           "element_symbol", "grid", "ring_operator", "bodies", "green", "Body", "disc", "half_plane", "hole", "liner", "sleeve",
-           "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
+           "element_symbol", "grid", "ring_operator", "bodies", "green", "layer3d", "Body", "disc", "half_plane",
+           "hole", "liner", "sleeve", "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
-           "JournalOptions", "JournalResult", "journal_bearing", "FiniteJournalOptions", "FiniteJournalResult", "JournalCoefficients", "journal_coefficients",
-           "stability_threshold",
+           "JournalOptions", "JournalResult", "journal_bearing", "FiniteJournalOptions", "FiniteJournalResult",
+           "JournalCoefficients", "journal_coefficients", "stability_threshold", "tilt_coefficients",
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
-           "initialize_processes"]
+           "initialize_processes", "checks", "reynolds"]
+
+# The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
+# their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still
+# import. New code should use the names above or the new paths (README, changelog).
+from .bodies import operator as _operator
+from .materials import viscoelastic as _viscoelastic
+from .scenes import journal as _journal, pin as _pin, roller as _roller
+from .scenes.journal import dynamics as _dynamics, finite as _finite
+
+for _old, _module in {"material": _viscoelastic, "operator": _operator, "green": green, "layer3d": layer3d,
+                      "layer3d_land": land, "reynolds": reynolds, "checks": checks, "pin": _pin,
+                      "roller": _roller, "journal": _journal, "journal_finite": _finite,
+                      "journal_dynamics": _dynamics}.items():
+    _sys.modules[f"{__name__}.{_old}"] = _module
+    globals()[_old] = _module
 
 if not _jax.config.read("jax_enable_x64"):
     _warnings.warn(

@@ -31,8 +31,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import checks
-from ._solve import bisect
+from ._core import checks
+from ._core.solve import bisect
 
 __all__ = ["hertz_line_contact", "lame_displacement", "winkler_pin", "oedometric_stiffness", "persson_shape_functions", "persson_coefficients",
            "persson_pressure", "persson_load_parameter", "persson_b_from_load", "persson_limit_b",

@@ -15,7 +15,7 @@ the thesis's body for that ring, or None for a rigid one).
 
 A liner, sleeve or hole with ``axial="3d"`` is, in a finite journal bearing (``length=``), the
 bonded layer (or the hole in a body of the land's thickness) in 3D elasticity over the land
-(:mod:`vjax.layer3d`, :mod:`vjax.layer3d_land`: its ends slide on rigid shoulders at the land's
+(:mod:`vjax.bodies.layer3d`, :mod:`vjax.bodies.land`: its ends slide on rigid shoulders at the land's
 ends); the default ``"slices"`` deforms each axial section as the plane ring. Plane scenes (and
 the infinitely long bearing) use the plane-strain body either way: it is the 3D body's long-wave
 limit. A 3D hole's ``ref_length`` fixes only its axially uniform response (the plane hole's mode
@@ -34,8 +34,9 @@ import dataclasses
 import jax
 import numpy as np
 
-from . import checks
-from .material import Material
+from .._core import checks
+from ..materials.viscoelastic import Material
+from . import land
 from .operator import ring_operator, whirl_symbol
 
 AXIAL = ("slices", "3d")
@@ -61,23 +62,21 @@ class Body:
 
     def whirl_symbol(self, R, n: int, omega, whirl):
         """Full-FFT symbol of the response to a perturbation at ``whirl`` (rad/s) of a pattern
-        moving at ``omega`` relative to the body (:func:`vjax.operator.whirl_symbol`)."""
+        moving at ``omega`` relative to the body (:func:`vjax.bodies.operator.whirl_symbol`)."""
         ref = 1.0 if self.ref_length is None else self.ref_length
         return whirl_symbol(_GREEN[self.kind], self.material, R, n, omega, whirl, ref, self.thickness)
 
     def land_operator(self, R, n: int, m: int, length, omega=0.0, memory="periodic"):
         """A 3D layer's or hole's operator on a finite bearing's land grid (``n`` theta elements by
-        ``m`` + 1 uniform axial nodes over ``length`` m; :func:`vjax.layer3d_land.land_operator`)."""
-        from .layer3d_land import land_operator
+        ``m`` + 1 uniform axial nodes over ``length`` m; :func:`vjax.bodies.land.land_operator`)."""
         ref = 1.0 if self.ref_length is None else self.ref_length
-        return land_operator(self.kind, self.material, R, self.thickness, length, n, m, omega, memory, ref)
+        return land.land_operator(self.kind, self.material, R, self.thickness, length, n, m, omega, memory, ref)
 
     def land_whirl_symbol(self, R, n: int, m: int, length, omega, whirl):
-        """The same body's whirl response on the land grid (:func:`vjax.layer3d_land.whirl_symbol`,
+        """The same body's whirl response on the land grid (:func:`vjax.bodies.land.whirl_symbol`,
         a hole with its ``ref_length``)."""
-        from .layer3d_land import whirl_symbol as land_whirl_symbol
         ref = 1.0 if self.ref_length is None else self.ref_length
-        return land_whirl_symbol(self.kind, self.material, R, self.thickness, length, n, m, omega, whirl, ref)
+        return land.whirl_symbol(self.kind, self.material, R, self.thickness, length, n, m, omega, whirl, ref)
 
     def at_temperature(self, shift, T) -> "Body":
         """The same body with its material at temperature ``T`` (C), see
@@ -98,7 +97,7 @@ def hole(material: Material, ref_length=1.0, axial: str = "slices") -> Body:
     at which the plane is held (the thesis's log R with R in metres: 1 m). ``axial``: how a
     finite journal bearing deforms it over the land, "slices" (plane strain per axial section)
     or "3d" (a hole through a body of the land's thickness whose faces slide on rigid shoulders,
-    in 3D elasticity, :mod:`vjax.layer3d_land`)."""
+    in 3D elasticity, :mod:`vjax.bodies.land`)."""
     return _with_ref_length("hole", material, ref_length, axial)
 
 
@@ -124,9 +123,9 @@ def _layer(kind, material, thickness, axial):
 
 def liner(material: Material, thickness, axial: str = "slices") -> Body:
     """A layer of ``material``, ``thickness`` (m) thick, loaded on its bore and bonded on its
-    outer surface to a rigid housing (Michell's solution, :func:`vjax.green.mode_compliance`).
+    outer surface to a rigid housing (Michell's solution, :func:`vjax.bodies.green.mode_compliance`).
     ``axial``: how a finite journal bearing deforms it over the land, "slices" (plane strain
-    per axial section) or "3d" (the bonded layer in 3D elasticity, :mod:`vjax.layer3d_land`)."""
+    per axial section) or "3d" (the bonded layer in 3D elasticity, :mod:`vjax.bodies.land`)."""
     return _layer("liner", material, thickness, axial)
 
 

@@ -14,7 +14,7 @@ The radial displacement of the loaded surface, positive into the body, is
     u(theta, z) = c(n, k R, nu, t / R) (R / E) P cos(n theta) cos(k z),
 
 c dimensionless, exactly the units and sign of the plane-strain layer compliance
-:func:`vjax.green.mode_compliance` (``"liner"``, ``"sleeve"``), which is its k -> 0 limit. With
+:func:`vjax.bodies.green.mode_compliance` (``"liner"``, ``"sleeve"``), which is its k -> 0 limit. With
 a constant Poisson ratio the viscoelastic layer is c / E*(omega) at each circumferential
 mode's own frequency, as in 2D (correspondence principle).
 
@@ -59,13 +59,13 @@ Boundary conditions, six per mode: sigma_rr = -P, sigma_r theta = 0, sigma_rz / 
 loaded surface; U = V = w = 0 on the bonded one. One 6 x 6 solve per (n, k) (rows
 equilibrated, Gaussian elimination with partial pivoting). n = 0 has no theta fields: the
 theta rows then pin solution (2)'s coefficients to zero (the axisymmetric pair is (1), (3)).
-k = 0 exactly is the plane-strain layer (:func:`vjax.green.mode_compliance`), the limit.
+k = 0 exactly is the plane-strain layer (:func:`vjax.bodies.green.mode_compliance`), the limit.
 
 Hole in an infinite body
 ------------------------
 ``"hole"``: a cylindrical hole of radius R in an infinite body, loaded on its bore by the same
 pressure (no shear), u = c(n, k R, nu) (R / E) P cos(n theta) cos(k z) into the body (units and
-sign of :func:`vjax.green.mode_compliance` ``"hole"``). For k > 0 only the three decaying K
+sign of :func:`vjax.bodies.green.mode_compliance` ``"hole"``). For k > 0 only the three decaying K
 solutions (1), (2), (3) (K_n, K_n, K_(n-1)) stay finite at infinity; the three traction rows on
 r = R (sigma_rr = -P, sigma_r theta = 0, sigma_rz / k = 0) give one 3 x 3 solve per (n, k)
 (n = 0: the theta row pins solution (2), as for the layer). n >= 2 and n = 0 tend to the plane
@@ -74,7 +74,7 @@ grows like -(1 + nu) kappa / (kappa + 1) log(k R) (kappa = 3 - 4 nu): the plane 
 log R / ref_length coefficient with the reference length ~ 1/k (numerically, to 1e-10 at
 nu = 0, 0.3, 0.45, 0.5: c(1, kR) -> the plane hole's with ref_length = 2 exp((kappa + 1) / (2 kappa)
 - gamma_Euler) / k; an identification, not derived here). k = 0 exactly is the plane
-hole (:func:`vjax.green.mode_compliance`, its mode 1 fixed by ``ref_length_ratio`` =
+hole (:func:`vjax.bodies.green.mode_compliance`, its mode 1 fixed by ``ref_length_ratio`` =
 ref_length / R, as the thesis fixes it); large k R and n tend to the half-space
 2 (1 - nu^2) / sqrt((k R)^2 + n^2).
 
@@ -203,7 +203,7 @@ def layer_modes(kind: str, n, kR, nu, thickness_ratio=None, n_max: int | None = 
     shoulders); ``nu``: Poisson ratio (<= 0.5, 0.5 allowed); ``thickness_ratio``: a layer's t / R
     (a sleeve's below 1; not for a hole); ``ref_length_ratio``: a hole's ref_length / R, which
     fixes its mode 1 at k = 0 only (default 1). u = c (R / E) P into the body; k = 0 gives
-    :func:`vjax.green.mode_compliance`'s plane-strain value. Differentiable in kR, nu and t/R.
+    :func:`vjax.bodies.green.mode_compliance`'s plane-strain value. Differentiable in kR, nu and t/R.
     ``n_max``: a static bound on the orders (needed when ``n`` is traced; else max(n) rounded up to
     a power of two, so that calls share compiles)."""
     if kind not in KINDS:

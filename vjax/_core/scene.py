@@ -10,7 +10,7 @@ import dataclasses
 
 import numpy as np
 
-from . import _solve, checks
+from . import checks, solve as _solve
 
 
 class SceneResult:

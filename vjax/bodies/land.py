@@ -1,7 +1,7 @@
 """The bonded 3D layer's (or hole's) operator on a finite bearing's land grid: FFT in theta, DCT-I in z.
 
-Grid (:mod:`vjax._film2d`): n elements in theta (centres 2 pi i / n) by m + 1 uniformly spaced
-axial nodes z_0 = -L/2 ... z_m = L/2. The layer (:mod:`vjax.layer3d`) spans the land and its
+Grid (:mod:`vjax.films.film2d`): n elements in theta (centres 2 pi i / n) by m + 1 uniformly spaced
+axial nodes z_0 = -L/2 ... z_m = L/2. The layer (:mod:`vjax.bodies.layer3d`) spans the land and its
 ends slide on rigid shoulders at z = +-L/2: its axial modes are cos(k_q (z + L/2)), k_q = q pi / L,
 and its response is that of the pressure mirrored about each end (a period 2 L). The pressure
 is taken element-constant in theta (as the plane ring's operator takes it) and piecewise linear
@@ -14,11 +14,11 @@ folding onto the nodes' j = 0 .. m; so the displacement into the body at the nod
     G_kj = L_k + sum_(|l| <= 4) sinc((k + l n)/n) [ sum_(|s| <= 4) sinc^2((j + 2 m s)/(2 m)) c(|k + l n|, k_|j + 2 m s| R)
                                                   - c_2D(|k + l n|) ]
 
-with L_k the plane ring's element symbol of the layer (:func:`vjax.operator.element_symbol`,
+with L_k the plane ring's element symbol of the layer (:func:`vjax.bodies.operator.element_symbol`,
 E = 1: every theta mode aliased onto k, element-averaged), c the 3D modal compliance
-(:func:`vjax.layer3d.layer_modes`), c_2D its plane-strain limit (:func:`vjax.green.mode_compliance`)
+(:func:`vjax.bodies.layer3d.layer_modes`), c_2D its plane-strain limit (:func:`vjax.bodies.green.mode_compliance`)
 and J_eff(k) the material's compliance at mode k's own frequency (-k omega relative to the body,
-:func:`vjax.operator.effective_compliance`: the correspondence principle with a constant Poisson
+:func:`vjax.bodies.operator.effective_compliance`: the correspondence principle with a constant Poisson
 ratio, as in 2D). Since sum_s sinc^2((j + 2 m s)/(2 m)) = 1, a z-independent compliance gives back
 L_k: the plane-strain slices (each node's own pressure), and at j = 0 G is L_k exactly (a
 z-uniform pressure deforms the layer as the slices do). The 3D correction is carried by the
@@ -27,7 +27,7 @@ base theta mode and its eight nearest aliases (the farther ones keep plane strai
 ones (|s| <= 200, weight ~ 1/(pi s)^2) by the flat bonded layer of the same wavenumber (their
 waves are at most L / (4.5 m) long: short against the layer's curvature).
 
-A hole (kind ``"hole"``, :func:`vjax.layer3d.layer_modes`): a hole of radius R through a body of
+A hole (kind ``"hole"``, :func:`vjax.bodies.layer3d.layer_modes`): a hole of radius R through a body of
 thickness L (the land) whose faces slide on rigid frictionless shoulders at z = +-L/2, so the
 cosine modes are exact as for the layer. The same G with L_k the plane hole's element symbol
 (A.45, its mode 1 fixed by ``ref_length``, so that a z-uniform pressure gives the plane hole's
@@ -47,9 +47,10 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import checks, green
+from .._core import checks
+from . import green
 from .layer3d import KINDS, layer_modes
-from .material import Material
+from ..materials.viscoelastic import Material
 from .operator import effective_compliance, element_symbol, memory_revolutions, whirl_compliance
 
 ALIASES = tuple(range(-4, 5))   # images k + l n of a theta mode that carry the 3D correction
@@ -107,7 +108,7 @@ def land_operator(kind: str, material: Material, R, thickness, length, n: int, m
     ``length``); ``thickness`` (m) a layer's (None for a hole); ``length`` L (m) of the land and
     of the layer or body (its ends sliding on rigid shoulders); ``n`` theta elements, ``m`` axial
     intervals (uniform nodes); ``omega`` (rad/s) the pressure pattern's speed relative to the
-    body, ``memory`` as :func:`vjax.operator.ring_operator`; ``ref_length`` (m) a hole's plane
+    body, ``memory`` as :func:`vjax.bodies.operator.ring_operator`; ``ref_length`` (m) a hole's plane
     mode 1 reference length (:func:`vjax.bodies.hole`; the axially uniform column only)."""
     _check_kind(kind, thickness)
     name, val = ("ref_length", ref_length) if kind == "hole" else ("thickness", thickness)
@@ -187,7 +188,7 @@ def whirl_symbol(kind, material, R, thickness, length, n: int, m: int, omega, wh
     perturbation p(theta, z) e^(i whirl t) on a pattern moving at ``omega`` (rad/s) relative to
     the body, on the full FFT in theta (``fftfreq`` order) and the DCT-I in z:
     u = ifft(idct1(S dct1(fft(p)))). Theta mode k (signed) responds at its own frequency
-    -k omega + whirl (:func:`vjax.operator.whirl_compliance`), times the geometry G of
+    -k omega + whirl (:func:`vjax.bodies.operator.whirl_compliance`), times the geometry G of
     :func:`land_operator` (``ref_length``: a hole's, as there)."""
     _check_kind(kind, thickness)
     G = _geometry(kind, material.nu, R, thickness, length, n, m, ref_length)   # (n/2 + 1, m + 1)

@@ -8,7 +8,7 @@ the surface speeds), p = ambient (0, gauge) at both ends z = +-L/2. Grid: n cell
 L/2 (vertex-centred in z, so the end pressure is held exactly on the end nodes); the unknowns
 live on the n x (m - 1) interior nodes, each the centre of a control volume R dtheta by
 dz_j = (z_{j+1} - z_{j-1})/2. Fluxes through the faces (second order, the face film the mean
-of its two nodes, as in the ring's :mod:`vjax.reynolds`):
+of its two nodes, as in the ring's :mod:`vjax.films.reynolds`):
 
     q_x = -h_f^3/(12 eta) dp/dx + v h_f   (m^2/s per unit width, theta faces)
     q_z = -h_f^3/(12 eta) dp/dz           (m^2/s per unit arc, z faces)
@@ -18,7 +18,7 @@ the squeeze term R dtheta dz_j dh/dt, is its mass balance. Each balance is divid
 of its four face conductances times p_ref: the equation then reads "p minus the weighted
 mean of its neighbours minus a source" in units of p_ref, O(1) and with a round-off floor of
 a few machine epsilons whatever the cells' aspect ratio. Cavitation as in 1D
-(:mod:`vjax.reynolds`): "reynolds" (Fischer-Burmeister complementarity of p and w),
+(:mod:`vjax.films.reynolds`): "reynolds" (Fischer-Burmeister complementarity of p and w),
 "half_sommerfeld" (the Sommerfeld field, negative part clipped when it loads the surfaces),
 "sommerfeld". Cells of a supply groove hold the supply pressure instead of a balance.
 
@@ -117,7 +117,7 @@ def cell_equations(p_scaled, outflow, scale, cavitation, groove, supply, couette
     with the scaled pressure; ``groove`` cells (a 0/1 mask) hold the scaled ``supply`` pressure.
     ``couette_outflow`` (n, m - 1) (m^3/s): the cells' net Couette outflow at entrainment speed
     ``v``; under Reynolds conditions each axial line's rupture is then located within its cell
-    as in 1D (:func:`vjax.reynolds.rupture_outflow`, along theta), times ``subcell``."""
+    as in 1D (:func:`vjax.films.reynolds.rupture_outflow`, along theta), times ``subcell``."""
     w = outflow / scale
     if cavitation == "reynolds" and couette_outflow is not None:
         w = w - subcell * reynolds.rupture_outflow(p_scaled, couette_outflow / scale, v)

@@ -1,29 +1,27 @@
 """The infinitely long journal bearing's equations: parameters, the film and the bodies'
 deformation on the ring grid, the cell balances with the load balance, the rigid start, and
-Newton on them (dense or matrix-free). :mod:`vjax.journal` solves them for the steady state
-(its module docstring states the equations and conventions), :mod:`vjax.journal_dynamics`
+Newton on them (dense or matrix-free). :mod:`vjax.scenes.journal.long` solves them for the steady state
+(its module docstring states the equations and conventions), :mod:`vjax.scenes.journal.dynamics`
 linearizes them for the dynamic coefficients."""
 from __future__ import annotations
 
 import dataclasses
 import math
 from functools import partial
-from typing import TYPE_CHECKING
 
 import jax
 import jax.numpy as jnp
-import numpy as np
 
-from . import _banded, _krylov, _scene, _solve, checks, reference, reynolds
-from .bodies import as_body, check_fits, disc, hole
-from .operator import RingOperator, grid, memory_revolutions
+from ...._core import checks, krylov as _krylov, scene as _scene, solve as _solve
+from .... import reference
+from ....bodies.operator import RingOperator, grid
+from ....films import banded, reynolds
+from ..options import JournalOptions
+from ..setup import bodies_at, check_arguments
 
-if TYPE_CHECKING:
-    from .journal import JournalOptions
 
-HOUSINGS = ("hole", "liner", "half_plane")
-SHAFTS = ("disc", "sleeve", "half_plane")
 GROOVES = ("line_of_centres", "fixed")
+
 KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
 
 
@@ -101,7 +99,7 @@ def guess(pr: Params, n, cfg: Config):
 
 def fields(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
     """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
-    "jfo" switch, see :func:`_solver`; ``deformation``: u_B + u_J given instead of computed,
+    "jfo" switch, see :func:`vjax.scenes.journal.long.steady._solver`; ``deformation``: u_B + u_J given instead of computed,
     for the Newton preconditioner)."""
     n = x.shape[0] - 2
     theta, alpha = grid(n)
@@ -197,14 +195,14 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
     deformation (cyclic tridiagonal: a cell sees its neighbours' faces), K the bodies'
     compliance (circulant), D the derivative of the loading pressure (diagonal). M keeps K on
     its lowest ``krylov_modes`` Fourier modes, which carry most of a body's compliance
-    (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax._banded`).
+    (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax.films.banded`).
     For rigid bodies M = J exactly: GMRES converges in one step."""
     n = x.shape[0] - 2
     N, dtype = n + 2, x.dtype
     f = fields(x, pr, cfg, smoothing)
     deformation = f["uB"] + f["uJ"]
     cells = lambda u, U: equations(jnp.concatenate([u, x[n:]]), pr, cfg, smoothing, U, subcell)[0][:n]
-    lower, diag, upper = _banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
+    lower, diag, upper = banded.cyclic_diagonals(lambda u: cells(u, deformation), x[:n])
     full = lambda y: equations(y, pr, cfg, smoothing, subcell=subcell)[0]
     _, matvec = jax.linearize(full, x)
     _, vjp = jax.vjp(full, x)
@@ -219,7 +217,7 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
          jnp.concatenate([J_rows.T, jnp.zeros((2, 2), dtype)])]
     ops = [op for op in (pr.op_B, pr.op_J) if op is not None]
     if ops:
-        G = _banded.cyclic_diagonals(lambda U_: cells(x[:n], U_), deformation)
+        G = banded.cyclic_diagonals(lambda U_: cells(x[:n], U_), deformation)
         load = lambda u: reynolds.load_pressure(reynolds.pressure_and_fraction(u, cfg.cavitation, smoothing)[0]
                                                 * pr.p_ref, cfg.cavitation)
         D = jax.jvp(load, (x[:n],), (jnp.ones(n, dtype),))[1]
@@ -231,12 +229,12 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
         weight = jnp.concatenate([jnp.full(1, 1.0 / n), jnp.full(2 * (m - 1), 2.0 / n)]).astype(dtype)
         symbol = sum(op.symbol for op in ops).at[1].set(0.0)
         K_basis = jnp.fft.irfft(symbol[:, None] * jnp.fft.rfft(basis, axis=0), n, axis=0)
-        U.append(pad(_banded.cyclic_matvec(G, K_basis * weight)))
+        U.append(pad(banded.cyclic_matvec(G, K_basis * weight)))
         V.append(pad(D[:, None] * basis))
     zeros2 = jnp.zeros(2, dtype)
     tri = (jnp.concatenate([lower, zeros2]), jnp.concatenate([diag, jnp.ones(2, dtype)]),
            jnp.concatenate([upper.at[-1].set(0.0), zeros2]))
-    solve, solve_transpose = _banded.woodbury(tri, jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1))
+    solve, solve_transpose = banded.woodbury(tri, jnp.concatenate(U, axis=1), jnp.concatenate(V, axis=1))
     return solve, solve_transpose, matvec, lambda v: vjp(v)[0]
 
 
@@ -246,29 +244,14 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     """Checked arguments of :func:`vjax.journal_bearing` (``options`` a checked
     :class:`~vjax.JournalOptions`) -> (parameters with a zero start, config, housing body,
     shaft body) - the bodies at ``temperature``, None when rigid."""
-    housing = as_body("housing", housing, hole, HOUSINGS)
-    shaft = as_body("shaft", shaft, disc, SHAFTS)
-    _scene.scalars(checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity)
-    _scene.scalars(checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle,
-                   supply_angle=supply_angle)
-    _scene.scalars(checks.nonnegative, supply_pressure=supply_pressure)
-    checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    check_arguments(R, radial_clearance, viscosity, load, omega_shaft=omega_shaft, omega_housing=omega_housing,
+                    load_angle=load_angle, memory=memory, cavitation=cavitation, supply_pressure=supply_pressure)
     checks.one_of("groove", groove, GROOVES)
-    memory_revolutions(memory)
-    Rv, cv = checks.values("R", R), checks.values("radial_clearance", radial_clearance)
-    if Rv is not None and cv is not None and not np.all(cv < Rv):
-        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
-    checks.load(load)
-    wB, wJ = (checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
-    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
-        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
-                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
+    _scene.scalars(checks.finite, supply_angle=supply_angle)
     sa = checks.values("supply_angle", supply_angle)
     if sa is None:
         raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
-    check_fits("housing", housing, R)
-    check_fits("shaft", shaft, R - radial_clearance)
-    housing, shaft = _scene.at_temperature(temperature, shift, housing, shaft)
+    housing, shaft = bodies_at(R, radial_clearance, housing, shaft, temperature, shift)
     n = options.n
     dtype = jnp.result_type(float)
     floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2

@@ -1,4 +1,4 @@
-"""Needle roller bearing balance equations (internal; see :mod:`vjax.roller`).
+"""Needle roller bearing balance equations (internal; see :mod:`vjax.scenes.roller`).
 
 The unknowns are the split of each roller's deflection, x_j = delta_j^O (Eq. 2.37), and the
 ring shift delta_r. The equations are the radial balance of each roller, F_j^O = F_j^I, with
@@ -22,9 +22,9 @@ import dataclasses
 import jax
 import jax.numpy as jnp
 
-from ._roller_geometry import inner_interference, outer_interference, owner, roller_centres, wrap
-from .contact import ContactOptions, solve_contact
-from .operator import RingOperator, grid
+from .geometry import inner_interference, outer_interference, owner, roller_centres, wrap
+from ...contact.solve import ContactOptions, solve_contact
+from ...bodies.operator import RingOperator, grid
 
 
 @jax.tree_util.register_dataclass

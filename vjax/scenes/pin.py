@@ -27,10 +27,10 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from . import _scene, _solve, checks
-from .bodies import Body, as_body, check_fits, hole
-from .contact import ContactOptions, solve_contact, solve_with_fallback
-from .operator import grid, memory_revolutions, spectral_derivative
+from .._core import checks, scene as _scene, solve as _solve
+from ..bodies.body import Body, as_body, check_fits, hole
+from ..contact.solve import ContactOptions, solve_contact, solve_with_fallback
+from ..bodies.operator import grid, memory_revolutions, spectral_derivative
 
 HOUSINGS = ("hole", "liner")
 
@@ -129,7 +129,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
       load: force on the pin (N/m), > 0, along ``load_angle`` (rad from the x axis).
       omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
         moves at :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
-      memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.operator`).
+      memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.bodies.operator`).
       temperature, shift: evaluate the material at ``temperature`` (C) with the shift law
         ``shift`` (both or neither).
       initial: a :class:`PinResult` of the same pin (same n) at nearby parameters: the solve

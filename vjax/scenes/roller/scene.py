@@ -9,7 +9,7 @@ perpendicular motion is held, as in the thesis, and its force is a reaction). Ro
 at the angle psi_j = roller_angle + 2 pi j / Z (roller 1, index 0, on the load line by
 default, numbering counter-clockwise as in Fig. 2.12).
 
-**Geometry and equations** (:mod:`vjax._roller_geometry`, :mod:`vjax._roller_balance`).
+**Geometry and equations** (:mod:`vjax.scenes.roller.geometry`, :mod:`vjax.scenes.roller.balance`).
 Exact circles: each roller's overlap with each undeformed ring along every ray; on the
 centre line the penetrations delta_j^O = rho_j + r - R_O and delta_j^I = R_I + r -
 |rho_j e_j - C| sum to first order to Eq. 2.26, delta_j = delta_r cos psi_j - P_d/2, with the
@@ -20,10 +20,10 @@ the patches interact through the ring). The unknowns are the outer penetrations 
 and the ring shift; the equations each roller's radial balance and the load balance, written
 so that unloaded rollers keep the Jacobian regular.
 
-**Solve and derivatives.** The core's damped Newton (:func:`vjax._solve.newton`) with the
+**Solve and derivatives.** The core's damped Newton (:func:`vjax._core.solve.newton`) with the
 exact Jacobian (``jax.jacfwd`` through both contact solves, whose own derivatives are
 implicit); derivatives of the result come from the implicit function theorem at the
-converged root (:func:`vjax._solve.implicit_root`), then from the contact solves at that
+converged root (:func:`vjax._core.solve.implicit_root`), then from the contact solves at that
 root: nothing is differentiated through the iterations.
 
 **Cost.** Each Newton iteration solves both rings (warm-started from the previous
@@ -67,10 +67,11 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _roller_balance as balance, _scene, _solve, checks
-from .bodies import as_body, check_fits, disc, hole
-from .contact import ContactOptions
-from .operator import grid, memory_revolutions, spectral_derivative
+from ..._core import checks, scene as _scene, solve as _solve
+from . import balance
+from ...bodies.body import as_body, check_fits, disc, hole
+from ...contact.solve import ContactOptions
+from ...bodies.operator import grid, memory_revolutions, spectral_derivative
 
 HOUSINGS = ("hole", "liner")
 SHAFTS = ("disc", "sleeve")
@@ -268,7 +269,7 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
       roller_angle: angle of roller 1 (rad), default ``load_angle`` (a roller on the load line).
       omega_shaft, omega_housing: inner and outer ring speeds (rad/s); the patch speeds follow
         from pure rolling (:func:`roller_patch_speeds`).
-      memory: "periodic" (default), "thesis" or a number of revolutions (:mod:`vjax.operator`).
+      memory: "periodic" (default), "thesis" or a number of revolutions (:mod:`vjax.bodies.operator`).
       temperature, shift: evaluate both materials at ``temperature`` (C) with the shift law
         ``shift`` (:meth:`~vjax.Material.at_temperature`; both or neither).
       initial: a :class:`RollerResult` of the same bearing at nearby parameters (e.g. the

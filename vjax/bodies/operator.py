@@ -39,8 +39,9 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import checks, green
-from .material import Material
+from .._core import checks
+from . import green
+from ..materials.viscoelastic import Material
 
 
 def memory_revolutions(memory) -> float:
@@ -86,7 +87,7 @@ def element_symbol(kind: str, n: int, R, nu, ref_length=1.0, thickness=None):
 
     The kernels are even, so the symbol is real. Multiply by R * Jeff_n to get the operator.
     "liner" and "sleeve" (bonded layers of ``thickness`` m) are built from their modal
-    compliances (:func:`vjax.green.layer_element_symbol`).
+    compliances (:func:`vjax.bodies.green.layer_element_symbol`).
     """
     if kind in green.LAYERS:
         return green.layer_element_symbol(kind, n, R, nu, thickness)
@@ -141,7 +142,7 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
 
     Args:
       kind: Green's function, "hole", "cylinder", "diametral", "half_plane", or a bonded
-        layer "liner" / "sleeve" (see :mod:`vjax.green`).
+        layer "liner" / "sleeve" (see :mod:`vjax.bodies.green`).
       material: the body's :class:`~vjax.Material`.
       R: ring radius (m).
       n: number of elements (static).

@@ -24,7 +24,7 @@ costs O(N log N) per Krylov iteration. M_AA and its preconditioner depend only o
 within A, so when A spans at most an eighth of the ring, the Krylov solve runs on a window
 of N/4 elements instead, with FFTs a quarter as long.
 
-**Derivatives**: implicit, at the solution (:func:`vjax._solve.implicit_root`): the tangent
+**Derivatives**: implicit, at the solution (:func:`vjax._core.solve.implicit_root`): the tangent
 solves the same linearized system with the active set frozen, matrix-free by the bordered
 Krylov solve below (forward and reverse mode; the reverse pass is one transposed solve). Nothing is
 differentiated through the iterations. Where the contact set is about to change the
@@ -41,9 +41,9 @@ from typing import NamedTuple
 import jax
 import jax.numpy as jnp
 import numpy as np
-from . import _krylov, _solve, checks
-from .checks import is_concrete
-from .operator import RingOperator
+from .._core import checks, krylov as _krylov, solve as _solve
+from .._core.checks import is_concrete
+from ..bodies.operator import RingOperator
 
 
 @jax.tree_util.register_dataclass
@@ -51,7 +51,7 @@ from .operator import RingOperator
 class ContactSolution:
     """Pressure (Pa), displacement (m), rigid-body unknowns q, the active set, and the solve's
     report: ``iterations`` (active-set Newton steps), ``residual``, ``result`` (a code of
-    :mod:`vjax._solve`; ``converged`` is ``result == 0``)."""
+    :mod:`vjax._core.solve`; ``converged`` is ``result == 0``)."""
 
     pressure: jax.Array
     displacement: jax.Array

@@ -34,7 +34,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from . import _solve, checks
+from .._core import checks, solve as _solve
 
 GAS_CONSTANT = 8.314462618  # J/(mol K)
 KELVIN = 273.15

@@ -2,8 +2,8 @@
 
 A finite-volume film on n x k cells (theta-major, cyclic in theta) couples each cell to its
 3 x 3 neighbourhood, so its Jacobian is a 9-point stencil,
-C[a + 1, b + 1, i, j] = dF_ij / dx_(i + a mod n, j + b) (:func:`vjax._blocks.stencil`). The
-exact block solve (:mod:`vjax._blocks`) factors it in O(n k^3); this V-cycle costs O(n k)
+C[a + 1, b + 1, i, j] = dF_ij / dx_(i + a mod n, j + b) (:func:`vjax.films.blocks.stencil`). The
+exact block solve (:mod:`vjax.films.blocks`) factors it in O(n k^3); this V-cycle costs O(n k)
 per application: on each level one sweep of line relaxation along theta (a tridiagonal
 solve per axial position) and one along z (per angle), before and after the coarse
 correction; coarse levels by Galerkin aggregation (2 x 2 cells into one: piecewise-constant
@@ -18,7 +18,7 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
-from . import _blocks
+from . import blocks as _blocks
 
 COARSEST_WIDTH = 16      # coarsen while the cells across the width exceed this (and n stays even)
 

@@ -1,4 +1,4 @@
-"""Needle roller bearing geometry: exact circles, no parabola (internal; see :mod:`vjax.roller`).
+"""Needle roller bearing geometry: exact circles, no parabola (internal; see :mod:`vjax.scenes.roller`).
 
 Roller j's centre is at distance rho_j from the bearing centre O. Its overlap with the
 undeformed outer ring along the ray theta from O, and with the undeformed inner ring along

@@ -1,0 +1,280 @@
+"""The finite journal bearing's equations: parameters, the unknowns' layout over the land,
+the film and the bodies' deformation on the (theta, z) grid, the cell balances with the force
+balance, and the Newton system's linear model (block solve, multigrid, GMRES).
+:mod:`vjax.scenes.journal.finite` states the equations and conventions."""
+from __future__ import annotations
+
+import dataclasses
+
+import jax
+import jax.numpy as jnp
+
+from ...._core import krylov as _krylov
+from ....bodies.land import LandOperator
+from ....bodies.operator import RingOperator, grid
+from ....films import blocks, film2d, multigrid, reynolds
+
+
+KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
+
+KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
+
+EXACT_WIDTH = 32          # Newton's preconditioner: the exact block solve up to this many unknown cells across the
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True)
+class Params:
+    """Differentiable parameters of the finite bearing (SI; grid axes: x along ``frame``)."""
+
+    R: jax.Array
+    RJ: jax.Array
+    c: jax.Array
+    L: jax.Array
+    eta: jax.Array
+    v: jax.Array                 # entrainment speed (m/s)
+    W: jax.Array                 # load magnitude (N)
+    load: jax.Array              # (2,) load on the journal, grid axes (N)
+    frame: jax.Array             # absolute angle of the grid's x axis (the load's at setup; not differentiated)
+    tilt: jax.Array              # (2,) grid axes (rad)
+    ps: jax.Array                # groove pressure (Pa)
+    omega_B: jax.Array
+    omega_J: jax.Array
+    p_ref: jax.Array             # W / (2 R L)
+    groove: jax.Array            # (n, m + 1) 0/1 mask of the groove's nodes (the end ones at ambient pressure)
+    circumferential: jax.Array   # 1: the groove runs round the mid-width (its inlet flow is axial), else 0
+    s: jax.Array                 # (m + 1,) axial nodes over L/2, -1 ... 1 (the spacing; not differentiated)
+    op_B: RingOperator | LandOperator | None   # each axial slice's ring operator (plane strain), or a
+    op_J: RingOperator | LandOperator | None   # 3D layer's land operator; None: rigid
+    compliance: jax.Array        # the bodies' compliance scaled by this (1; less in the solver's continuation)
+    smoothing: jax.Array         # mu of the "jfo" switch (0: exact; more in the solver's homotopy)
+    x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
+
+
+@dataclasses.dataclass(frozen=True)
+class Config:
+    """Static configuration: cavitation model, grid size, Newton's tolerance and step cap, and
+    whether deformable bodies' linear solves are GMRES (the axial spacing is a parameter,
+    ``Params.s``: uniform and cosine grids share one compile)."""
+
+    cavitation: str
+    n: int
+    m: int
+    tol: float
+    max_iter: int
+    krylov: bool = False
+    half: bool = False    # the steady solve of an aligned bearing: unknowns from mid-width to one end
+
+
+def unknowns(cfg: Config):
+    return cfg.n * columns(cfg)
+
+
+def columns(cfg: Config):
+    """Axial columns of the cell unknowns: the m - 1 interior nodes; in a half-width solve
+    (``cfg.half``) the m / 2 from mid-width to the last interior one."""
+    return cfg.m // 2 if cfg.half else cfg.m - 1
+
+
+def interior(u, cfg: Config):
+    """The flat cell unknowns (n columns) as values (n, m - 1) at every interior node: a
+    half-width solve's mirrored about mid-width (an aligned bearing's pressure is symmetric)."""
+    u = u.reshape(cfg.n, columns(cfg))
+    return jnp.concatenate([u[:, :0:-1], u], axis=1) if cfg.half else u
+
+
+def own_columns(a, cfg: Config):
+    """The unknowns' columns (n, columns) of an array over the interior nodes (n, m - 1)."""
+    return a[:, cfg.m // 2 - 1:] if cfg.half else a
+
+
+def rotation(frame):
+    """The 2 x 2 rotation from grid axes to absolute ones (the grid's x axis at ``frame``)."""
+    c, s = jnp.cos(frame), jnp.sin(frame)
+    return jnp.array([[c, -s], [s, c]])
+
+
+def as_unknowns(scaled, position, pr: Params, cfg: Config):
+    """Unknowns [scaled pressure (the universal unknown for "jfo") at the interior nodes (those
+    of the unknowns, :func:`columns`), journal centre / c in grid axes] from ``scaled`` (n, m + 1)
+    and an absolute ``position`` (m)."""
+    return jnp.concatenate([own_columns(scaled[:, 1:-1], cfg).ravel(), rotation(pr.frame).T @ position / pr.c])
+
+
+def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
+    """Grid, pressure (all nodes, Pa), film and fluxes for the unknowns x = [p/p_ref (n (m - 1)),
+    e/c (2)]; ``motion`` (dX, dY, dX/dt, dY/dt) of the journal (m, m/s, grid axes) adds to the
+    position and gives the film's rate dh/dt (the dynamic coefficients). ``relaxed`` (traced
+    bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback).
+    ``deformation``: (U, dU/dt) (m, m/s; (n, m + 1) each) the bodies' displacement u_B + u_J and
+    its rate, given instead of computed from the pressure (the dynamic coefficients)."""
+    n, m = cfg.n, cfg.m
+    N = unknowns(cfg)
+    theta, _ = grid(n)
+    z = 0.5 * pr.L * pr.s
+    pz = interior(x[:N], cfg)
+    jfo = cfg.cavitation == "jfo"
+    p, fraction, p_load = loading(pz, pr, cfg, relaxed)
+    e = pr.c * x[N:N + 2]
+    hdot = jnp.zeros((n, m + 1), x.dtype)
+    if motion is not None:
+        e = e + motion[:2]
+        hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
+    if deformation is None:
+        uB, uJ = deformations(p_load, pr, z)
+    else:
+        uB, uJ = deformation[0], jnp.zeros_like(deformation[0])
+        hdot = hdot + deformation[1]
+    h = film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
+    f = film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None)
+    return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
+                fraction=fraction)
+
+
+def loading(pz, pr: Params, cfg: Config, relaxed=False):
+    """Pressure (n, m + 1) (Pa, all nodes), liquid fraction and loading pressure (the one the
+    bodies and the journal carry: clipped at 0 by half-Sommerfeld, or by ``relaxed`` Reynolds
+    conditions) from the cell unknowns ``pz`` (n, m - 1)."""
+    jfo = cfg.cavitation == "jfo"
+    # "jfo": pz is Elrod's universal unknown, the pressure where positive, the liquid film
+    # fraction - 1 where negative (:func:`vjax.films.reynolds.pressure_and_fraction`)
+    p_scaled, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation, pr.smoothing if jfo else 0.0)
+    p = film2d.with_ends(p_scaled * pr.p_ref)
+    fraction = 1.0 + film2d.with_ends(fraction - 1.0)     # the ends: ambient, a full film
+    p_load = reynolds.load_pressure(p, cfg.cavitation)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        p_load = jnp.where(relaxed, jnp.maximum(p, 0.0), p_load)
+    return p, fraction, p_load
+
+
+def deformations(p_load, pr: Params, z):
+    """Radial displacements (n, m + 1) (m, each opening the film) of the bore and the journal
+    under the loading pressure ``p_load`` (Pa): every axial slice deforms as the plane ring
+    (plane strain) under its own pressure, by the ring operator's symbol along theta. The
+    slices' mean first mode is the film force per unit length, which equals the load over L
+    at equilibrium: it is taken from the load (as the long bearing does; for a soft body it
+    moves the slices by up to hundreds of clearances, which Newton then need not find), the
+    slices' deviations from it from their own pressure. Zero for rigid bodies."""
+    zero = jnp.zeros_like(p_load)
+    if pr.op_B is None and pr.op_J is None:
+        return zero, zero
+    n = p_load.shape[0]
+    wz = film2d.node_widths(z)
+    P = jnp.fft.rfft(p_load, axis=0)                       # (n // 2 + 1, m + 1)
+    # F_x + i F_y = -R dtheta sum_j w_j conj(P[1, j]) = -(load_x + i load_y) at equilibrium
+    mean = (P[1] @ wz) / pr.L
+    P = P.at[1].add((pr.load[0] - 1j * pr.load[1]) / (pr.R * 2 * jnp.pi / n * pr.L) - mean)
+
+    # slices: each section as the plane ring; a 3D layer: DCT-I in z as well
+    deform = lambda op: zero if op is None else op.apply_theta_modes(pr.compliance * P)    # noqa: E731
+    return deform(pr.op_B), deform(pr.op_J)
+
+
+def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None,
+                  subcell=1.0):
+    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes);
+    the arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
+    unknowns, with which a "jfo" cavity's liquid fraction changes (the dynamic coefficients);
+    ``subcell``: 1 locates a Reynolds rupture within its cell, 0 on a face (the solver's first
+    stages)."""
+    f = fields(x, pr, cfg, motion, relaxed, deformation)
+    out = film2d.net_outflow(f, pr.R, f["z"])
+    dth = 2 * jnp.pi / cfg.n
+    # the film's own growth d(h f)/dt per unit area, f the liquid fraction (1 but in a "jfo" cavity)
+    growth = f["hdot"][:, 1:-1] * f["fraction"][:, 1:-1]
+    if rate is not None and cfg.cavitation == "jfo":
+        growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, interior(rate, cfg), 0.0)
+    out = out + pr.R * dth * film2d.node_widths(f["z"])[None, 1:-1] * growth
+    scale = film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
+    couette = pr.v * f["hx"][:, 1:-1]
+    couette_out = (couette - jnp.roll(couette, 1, axis=0)) * film2d.node_widths(f["z"])[None, 1:-1]
+    r = film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref,
+                               couette_out, pr.v, subcell)
+    if cfg.cavitation == "reynolds" and relaxed is not False:
+        sommerfeld = film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
+        r = jnp.where(relaxed, sommerfeld, r)
+    F, _ = film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
+    return own_columns(r, cfg).ravel(), F, jnp.min(f["h"])
+
+
+def equations(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
+    """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
+    r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed, subcell=subcell)
+    return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
+
+
+def own_compliance(pr: Params, cfg: Config):
+    """The bodies' displacement (m/Pa) at a node under a unit pressure on that node alone, mode 1
+    left out (it comes from the load, :func:`deformations`): the diagonal of their compliance
+    (at mid-width; a slice's is the same at every node), for :func:`linear_model`."""
+    n, m = cfg.n, cfg.m
+    P = jnp.ones((n // 2 + 1, m + 1), jnp.result_type(pr.c, 1j)).at[1].set(0.0)
+    P = P * (jnp.arange(m + 1) == m // 2)                  # a unit pressure at (theta_0, z = 0)
+    u = sum(op.apply_theta_modes(P) for op in (pr.op_B, pr.op_J) if op is not None)
+    return pr.compliance * u[0, m // 2]
+
+
+def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
+    """``(solve, solve_transpose)`` of the Newton system at x. The cell equations' Jacobian in
+    the pressures, the film's deformation held, is block tridiagonal (a ring of n blocks of
+    m - 1 cells across the width, cyclic), bordered by the two position columns and force rows
+    (:func:`vjax.films.blocks.bordered_solver`, O(n m^3)): for rigid bodies that is the Jacobian, and
+    the solve is exact and direct up to EXACT_WIDTH unknown cells across; above that, GMRES
+    preconditioned by an aggregation multigrid V-cycle of the same stencil, the two border
+    unknowns left to GMRES (:func:`vjax.films.multigrid.bordered`, O(n m) per application).
+    Deformable bodies add G K D (G the cells' derivative in the film, K the bodies' compliance,
+    which couples every node of a slice, D the loading pressure's slope): with ``cfg.krylov``
+    the system is solved by GMRES, its products matrix-free (one FFT per product, O(N log N)),
+    preconditioned as above with K kept on each node's own entry of the film's Jacobian
+    (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part)."""
+    n = cfg.n
+    N = unknowns(cfg)
+    rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
+    if is_rigid(pr):
+        cells = lambda pz: cell_residual(rest(pz), pr, cfg, relaxed=relaxed, subcell=subcell)[0]     # noqa: E731
+    else:
+        f0 = fields(x, pr, cfg, relaxed=relaxed)
+        U0, load0, own = f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg)
+
+        def cells(pz):
+            U = U0 + own.real * (loading(interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
+            return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)),
+                                 subcell=subcell)[0]
+    C = blocks.stencil(cells, x[:N], n, columns(cfg))
+    full = lambda y: equations(y, pr, cfg, relaxed, subcell)[0]     # noqa: E731
+    _, matvec = jax.linearize(full, x)
+    _, vjp = jax.vjp(full, x)
+    unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
+    cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
+    rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
+    border = (cols[:N], rows[:, :N], cols[N:])
+    solve = stencil_solver(C, border)
+    # J^T's factors are made where its solve is called (the derivatives), not in Newton's loop
+    transposed = lambda: stencil_solver(C, border, transposed=True)     # noqa: E731
+    if is_rigid(pr) and columns(cfg) <= EXACT_WIDTH:
+        return solve, lambda b: transposed()(b)
+    gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
+    return (lambda b: gmres(matvec, solve, b)), (lambda b: gmres(lambda v: vjp(v)[0], transposed(), b))
+
+
+def stencil_solver(C, border=None, transposed=False):
+    """``b -> A^-1 b`` (``transposed``: ``A^-T b``) for the film's 9-point stencil C (3, 3, n,
+    k), bordered by ``border`` = (columns (n k, g), rows (g, n k), corner (g, g)) if given: up
+    to EXACT_WIDTH cells across the exact block solve (:func:`vjax.films.blocks.bordered_solver`),
+    above that the multigrid V-cycle, the border left to GMRES (:func:`vjax.films.multigrid.bordered`:
+    then a preconditioner, not a solve). Factored when called."""
+    if C.shape[3] > EXACT_WIDTH:
+        return multigrid.bordered(C, 0 if border is None else border[2].shape[0], transposed)
+    ring = blocks.stencil_blocks(C)
+    return blocks.ring_solver(ring, transposed) if border is None else blocks.bordered_solver(
+        ring, *border, transposed)
+
+
+def is_rigid(pr: Params):
+    return pr.op_B is None and pr.op_J is None
+
+
+def solved_by_linear_model(pr: Params, cfg: Config):
+    """Whether Newton's steps and the derivatives use :func:`linear_model` (block solve or
+    GMRES), not a dense LU of the AD Jacobian (deformable bodies on small grids)."""
+    return is_rigid(pr) or cfg.krylov or columns(cfg) > EXACT_WIDTH

@@ -1,0 +1,106 @@
+"""The finite journal bearing's result: forces and moment, position, film, torques (Couette,
+Poiseuille, viscoelastic), flows and power, from converged unknowns."""
+from __future__ import annotations
+
+import dataclasses
+
+import jax
+import jax.numpy as jnp
+
+from ...._core import scene as _scene
+from ....films import film2d
+from .film import Config, Params, fields, rotation
+
+
+@jax.tree_util.register_dataclass
+@dataclasses.dataclass(frozen=True, repr=False)
+class FiniteJournalResult(_scene.SceneResult):
+    """Solution of ``journal_bearing(..., length=L)`` (SI totals for the bearing; see
+    :mod:`vjax.scenes.journal.finite`). Arrays on the grid: ``theta`` (n,) from the load direction
+    (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
+    ``film_fraction`` (n, m + 1): the liquid fraction of the film (below 1 in a "jfo" cavity),
+    ``displacement`` of the bore and ``displacement_shaft`` of the journal (n, m + 1) (m,
+    each positive where it opens the film; zero for a rigid body). Convergence:
+    ``iterations``, ``residual``, ``result``; ``converged`` is ``result == 0``."""
+
+    theta: jax.Array
+    z: jax.Array
+    pressure: jax.Array
+    film: jax.Array
+    film_fraction: jax.Array
+    displacement: jax.Array
+    displacement_shaft: jax.Array
+    force: jax.Array
+    moment: jax.Array
+    position: jax.Array
+    eccentricity: jax.Array
+    attitude_angle: jax.Array
+    line_of_centres_angle: jax.Array
+    min_film: jax.Array
+    min_film_theta: jax.Array
+    min_film_z: jax.Array
+    max_pressure: jax.Array
+    torque: jax.Array
+    torque_shaft: jax.Array
+    torque_poiseuille: jax.Array
+    torque_poiseuille_shaft: jax.Array
+    torque_viscoelastic: jax.Array
+    torque_viscoelastic_shaft: jax.Array
+    side_leakage: jax.Array
+    supply_flow: jax.Array
+    inlet_flow: jax.Array
+    power_loss: jax.Array
+    iterations: jax.Array
+    residual: jax.Array
+    result: jax.Array
+
+
+def outputs(x, pr: Params, cfg: Config, stats):
+    f = fields(x, pr, cfg)
+    n = cfg.n
+    R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
+    dth = 2 * jnp.pi / n
+    wz = film2d.node_widths(z)
+    hx, dpdx = f["hx"], f["dpdx"]
+    dU = pr.omega_B * R - pr.omega_J * RJ
+    # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
+    liquid = film2d.upwind(f["fraction"], pr.v)
+    poiseuille = (-0.5 * hx * dpdx) @ wz
+    couette = (liquid * eta * dU / hx) @ wz
+    arc = R * dth
+    TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
+    # the pressure on each slice's deformed profile: its moment about the body's centre
+    # (the viscoelastic torque of the long bearing, per slice; central differences in theta)
+    central = lambda u: 0.5 * (jnp.roll(u, -1, axis=0) - jnp.roll(u, 1, axis=0))
+    TvB, TvJ = (-R * jnp.sum(f["p_load"] * central(u), axis=0) @ wz for u in (f["uB"], f["uJ"]))
+    TB = TB_p - R * arc * jnp.sum(couette) + TvB
+    TJ = TJ_p + RJ * arc * jnp.sum(couette) + TvJ
+    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / hx) @ wz) \
+        + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
+    leakage = film2d.end_outflow(f["p"], f["h"], z, R, eta)
+    # the groove's net outflow: its interior cells, the ones held at the supply pressure; its
+    # downstream flow into the land: every node of its column (the end nodes' half cells carry
+    # Couette flow too)
+    supply = jnp.sum(pr.groove[:, 1:-1] * film2d.net_outflow(f, R, z))
+    qx = f["qx"]
+    downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
+    # a circumferential groove feeds the land axially: all its outflow goes in
+    inlet = jnp.where(pr.circumferential > 0, supply, jnp.sum(pr.groove * downstream * wz[None, :]))
+    F, M = film2d.resultants(f["p_load"], theta, z, R)
+    rot = lambda a: rotation(pr.frame) @ a
+    e = f["e"]
+    h = f["h"]
+    k = jnp.argmin(h)
+    i, j = k // h.shape[1], k % h.shape[1]
+    load_dir = jnp.arctan2(pr.load[1], pr.load[0])
+    phi = jnp.angle(jnp.exp(1j * (jnp.arctan2(e[1], e[0]) - load_dir)))
+    return FiniteJournalResult(
+        theta=theta, z=z, pressure=f["p_load"], film=h, film_fraction=f["fraction"], displacement=f["uB"],
+        displacement_shaft=f["uJ"], force=-rot(F),
+        moment=rot(M), position=rot(e), eccentricity=jnp.hypot(e[0], e[1]) / pr.c, attitude_angle=phi,
+        line_of_centres_angle=jnp.angle(jnp.exp(1j * (pr.frame + jnp.arctan2(e[1], e[0])))),
+        min_film=h[i, j], min_film_theta=theta[i], min_film_z=z[j], max_pressure=jnp.max(f["p_load"]),
+        torque=TB, torque_shaft=TJ, torque_poiseuille=TB_p, torque_poiseuille_shaft=TJ_p,
+        torque_viscoelastic=TvB, torque_viscoelastic_shaft=TvJ,
+        side_leakage=leakage, supply_flow=supply, inlet_flow=inlet, power_loss=power,
+        iterations=stats.iterations, residual=stats.residual, result=stats.result)

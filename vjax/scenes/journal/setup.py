@@ -1,0 +1,44 @@
+"""What the long and the finite journal bearing share in their set-up: the checks of the
+arguments both take, and the bodies (checked, fitted to their radii, at their temperature)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..._core import checks, scene as _scene
+from ...bodies.body import as_body, check_fits, disc, hole
+from ...bodies.operator import memory_revolutions
+from ...films import reynolds
+
+HOUSINGS = ("hole", "liner", "half_plane")
+SHAFTS = ("disc", "sleeve", "half_plane")
+
+
+def check_arguments(R, radial_clearance, viscosity, load, *, omega_shaft, omega_housing, load_angle, memory,
+                    cavitation, supply_pressure, **positive):
+    """Refuse, naming the argument, what neither film can take: non-positive sizes and viscosity
+    (and the further ``positive`` ones, e.g. the length), non-finite speeds, a clearance not
+    below R, zero entrainment speed (no hydrodynamic load capacity), a negative supply pressure,
+    an unknown cavitation model or memory, a malformed load."""
+    checks.one_of("cavitation", cavitation, reynolds.CAVITATION)
+    memory_revolutions(memory)
+    _scene.scalars(checks.positive, R=R, radial_clearance=radial_clearance, viscosity=viscosity, **positive)
+    _scene.scalars(checks.finite, omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle)
+    _scene.scalars(checks.nonnegative, supply_pressure=supply_pressure)
+    Rv, cv = checks.values("R", R), checks.values("radial_clearance", radial_clearance)
+    if Rv is not None and cv is not None and not np.all(cv < Rv):
+        raise ValueError(f"radial_clearance must be < R, got radial_clearance={radial_clearance!r}, R={R!r}")
+    wB, wJ = (checks.values(k, v) for k, v in (("omega_housing", omega_housing), ("omega_shaft", omega_shaft)))
+    if wB is not None and wJ is not None and Rv is not None and cv is not None and wB * Rv + wJ * (Rv - cv) == 0:
+        raise ValueError("omega_housing R + omega_shaft (R - radial_clearance) = 0: zero entrainment speed, "
+                         "no hydrodynamic load capacity (omega_shaft, omega_housing)")
+    checks.load(load)
+
+
+def bodies_at(R, radial_clearance, housing, shaft, temperature, shift):
+    """The checked housing and shaft bodies (None: rigid; a bare Material: a hole, resp. a disc)
+    at ``temperature`` under ``shift``."""
+    housing = as_body("housing", housing, hole, HOUSINGS)
+    shaft = as_body("shaft", shaft, disc, SHAFTS)
+    check_fits("housing", housing, R)
+    check_fits("shaft", shaft, R - radial_clearance)
+    return _scene.at_temperature(temperature, shift, housing, shaft)
