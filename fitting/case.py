@@ -1,0 +1,407 @@
+"""A bearing case file (TOML) for ``vjax-bearing``: schema, validation, units.
+
+:func:`load_case` reads and checks the whole file before any computation and returns a
+:class:`Case` in SI; anything wrong raises :class:`CaseError` naming the file, the key and what
+is expected (unknown keys, missing units, non-positive sizes, a clearance not below the radius,
+a material file that does not load). The schema, with every key, is in docs/bearing_files.md;
+values with a dimension are strings with their unit (:mod:`fitting.case_units`).
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from .case_units import UnitError, parse, parse_load
+
+__all__ = ["Case", "Body", "CaseError", "load_case", "SCENES"]
+
+SCENES = ("finite_journal", "long_journal", "roller", "pin")
+_REQUIRED = object()
+_DEFAULT_N = {"finite_journal": 32, "long_journal": 256, "roller": 512, "pin": 512}
+_BODY_KINDS = {"housing": ("rigid", "hole", "liner", "half_plane"), "shaft": ("rigid", "disc", "sleeve", "half_plane")}
+
+
+class CaseError(ValueError):
+    """Bad input in a case file: ``file``, ``key`` (dotted, e.g. "geometry.radial_clearance")
+    and the problem with what is expected."""
+
+    def __init__(self, file, key, problem):
+        self.file, self.key = os.fspath(file), key
+        super().__init__(f"{self.file}: {key}: {problem}" if key else f"{self.file}: {problem}")
+
+
+class _Table:
+    """One TOML table: typed getters that name the key on error, and :meth:`close`, which
+    refuses keys nobody asked for (a misspelt key is an error, not a silent default)."""
+
+    def __init__(self, data, key, file):
+        if not isinstance(data, dict):
+            raise CaseError(file, key, f"expected a table, got {data!r}")
+        self.data, self.key, self.file, self.asked = data, key, file, []
+
+    def path(self, name):
+        return f"{self.key}.{name}" if self.key else name
+
+    def error(self, name, problem):
+        return CaseError(self.file, self.path(name), problem)
+
+    def raw(self, name, default=_REQUIRED):
+        self.asked.append(name)
+        if name in self.data:
+            return self.data[name]
+        if default is _REQUIRED:
+            raise self.error(name, "missing (required)")
+        return default
+
+    def quantity(self, name, dim, default=_REQUIRED, positive=True):
+        v = self.raw(name, default)
+        if v is None:
+            return None
+        try:
+            x = parse(v, dim)
+        except UnitError as e:
+            raise self.error(name, str(e)) from None
+        if positive and not x > 0:
+            raise self.error(name, f"must be > 0, got {v!r}")
+        return x
+
+    def number(self, name, default=_REQUIRED, lo=None, hi=None, integer=False):
+        v = self.raw(name, default)
+        if v is None:
+            return None
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or (integer and not isinstance(v, int)):
+            raise self.error(name, f"expected {'an integer' if integer else 'a number'} (no unit), got {v!r}")
+        if (lo is not None and v < lo) or (hi is not None and v > hi):
+            raise self.error(name, f"must be in [{lo}, {hi}], got {v!r}")
+        return v
+
+    def choice(self, name, options, default=_REQUIRED):
+        v = self.raw(name, default)
+        if v not in options:
+            raise self.error(name, f"expected one of {', '.join(map(repr, options))}, got {v!r}")
+        return v
+
+    def table(self, name, default=_REQUIRED):
+        v = self.raw(name, default)
+        return None if v is None else _Table(v, self.path(name), self.file)
+
+    def close(self):
+        extra = [k for k in self.data if k not in self.asked]
+        if extra:
+            raise self.error(extra[0], f"unknown key; expected one of {', '.join(sorted(set(self.asked)))}")
+
+
+@dataclasses.dataclass(frozen=True)
+class Body:
+    """A bearing body: ``kind`` (rigid, hole, liner, half_plane, disc, sleeve), its
+    ``material`` (vjax.Material or None), ``shift`` law (or None), ``thickness`` (m; liner and
+    sleeve) and ``ref_length`` (m; hole, disc, half-plane), ``source`` (where the material came from)."""
+
+    kind: str
+    material: object = None
+    shift: object = None
+    thickness: float | None = None
+    ref_length: float = 1.0
+    source: str = ""
+
+
+@dataclasses.dataclass(frozen=True)
+class Case:
+    """A validated case, SI throughout (temperatures in C). ``loads`` are in N for a finite
+    journal bearing and in N/m (per unit axial length) for the plane scenes; ``points`` is the
+    sweep, (temperature, load, speed) with the speed innermost (warm starts along it)."""
+
+    file: str
+    text: str
+    name: str
+    title: str
+    scene: str
+    geometry: dict
+    housing: Body
+    shaft: Body
+    viscosity: object              # callable T -> Pa s, or None (dry scenes)
+    lubricant: str
+    speeds: np.ndarray
+    loads: np.ndarray
+    temperatures: tuple
+    turning: str
+    load_angle: float
+    memory: str
+    cavitation: str
+    n: int
+    m: int | None
+    whirl_ratios: tuple
+    overrides: tuple = ()
+
+    @property
+    def journal(self):
+        return self.scene.endswith("journal")
+
+    @property
+    def length(self):
+        return self.geometry.get("length")
+
+    @property
+    def points(self):
+        return [(T, W, w) for T in self.temperatures for W in self.loads for w in self.speeds]
+
+
+def _sweep(t: _Table, name, dim, default=_REQUIRED, load=False):
+    """A list of values, one value, or a range {from, to, points, spacing}."""
+    v = t.raw(name, default)
+    if v is default:
+        return v
+    one = (lambda x, k: parse_load(x)) if load else (lambda x, k: (parse(x, dim), dim))
+    try:
+        if isinstance(v, dict):
+            r = _Table(v, t.path(name), t.file)
+            a = one(r.raw("from"), "from")
+            b = one(r.raw("to"), "to")
+            k = r.number("points", lo=1, integer=True)
+            spacing = r.choice("spacing", ("linear", "log"), "linear")
+            r.close()
+            if a[1] != b[1]:
+                raise r.error("to", f"must have the dimension of 'from' ({a[1]}), got {b[1]}")
+            if spacing == "log" and not (a[0] > 0 and b[0] > 0):
+                raise r.error("spacing", "'log' needs positive 'from' and 'to'")
+            vals = np.geomspace(a[0], b[0], k) if spacing == "log" else np.linspace(a[0], b[0], k)
+            return vals, a[1]
+        items = v if isinstance(v, list) else [v]
+        if not items:
+            raise t.error(name, "is empty")
+        got = [one(x, i) for i, x in enumerate(items)]
+        if len({d for _, d in got}) > 1:
+            raise t.error(name, "mixes forces and forces per length")
+        return np.array([x for x, _ in got]), got[0][1]
+    except UnitError as e:
+        raise t.error(name, str(e) + " (or a list of them, or {from, to, points, spacing})") from None
+
+
+def _material(t: _Table, base: Path):
+    """A material: a string (a material.json of vjax-fit, relative to the case file) or an
+    inline table (model = sls | prony | elastic, optional shift). Returns (Material, shift, source)."""
+    import vjax
+    v = t.raw("material")
+    if isinstance(v, str):
+        from .io import load_material
+        path = (base / v).resolve()
+        try:
+            mat, shift, modulus = load_material(path)
+        except (OSError, ValueError) as e:
+            raise t.error("material", f"the material file does not load: {e}") from None
+        if modulus != "E":
+            raise t.error("material", f"{path} holds a shear modulus (G); the bearings take tensile moduli (E)")
+        return mat, shift, os.fspath(path)
+    m = _Table(v, t.path("material"), t.file)
+    model = m.choice("model", ("sls", "prony", "elastic"))
+    nu = m.number("nu", lo=-1.0, hi=0.5)
+    try:
+        if model == "elastic":
+            mat = vjax.Material.elastic(m.quantity("E", "modulus"), nu)
+        elif model == "sls":
+            mat = vjax.Material.sls(m.quantity("E0", "modulus"), m.quantity("Einf", "modulus"),
+                                    m.quantity("tau", "time"), nu)
+        else:
+            moduli, times = (m.raw(k) for k in ("moduli", "times"))
+            if not isinstance(moduli, list) or not isinstance(times, list) or len(moduli) != len(times) or not moduli:
+                raise m.error("moduli", "moduli and times must be lists of the same, non-zero length")
+            mods = [_one(m, "moduli", x, "modulus") for x in moduli]
+            tims = [_one(m, "times", x, "time") for x in times]
+            mat = vjax.Material.prony(m.quantity("E0", "modulus"), np.array(mods), np.array(tims), nu)
+    except ValueError as e:
+        if isinstance(e, CaseError):
+            raise
+        raise m.error(model, str(e)) from None
+    shift = None
+    s = m.table("shift", None)
+    if s is not None:
+        law = s.choice("law", ("WLF", "Arrhenius"))
+        T_ref = s.quantity("T_ref", "temperature", positive=False)
+        shift = (vjax.WLF(s.number("C1"), s.quantity("C2", "temperature difference"), T_ref) if law == "WLF"
+                 else vjax.Arrhenius(s.quantity("Ea", "molar energy"), T_ref))
+        s.close()
+    m.close()
+    return mat, shift, f"inline {model}"
+
+
+def _one(t: _Table, name, x, dim):
+    try:
+        x = parse(x, dim)
+    except UnitError as e:
+        raise t.error(name, str(e)) from None
+    if not x > 0:
+        raise t.error(name, f"values must be > 0, got {x!r}")
+    return x
+
+
+def _body(root: _Table, side: str, scene: str, base: Path) -> Body:
+    t = root.table(side, None)
+    if t is None:
+        return Body("rigid")
+    kinds = _BODY_KINDS[side]
+    if scene == "pin" and side == "housing":
+        kinds = ("hole", "liner")
+    if scene == "roller":
+        kinds = ("rigid", "hole", "liner") if side == "housing" else ("rigid", "disc", "sleeve")
+    kind = t.choice("body", kinds)
+    if kind == "rigid":
+        t.close()
+        return Body("rigid")
+    mat, shift, source = _material(t, base)
+    thickness = t.quantity("thickness", "length") if kind in ("liner", "sleeve") else None
+    ref = t.quantity("ref_length", "length", "1 m") if kind in ("hole", "disc", "half_plane") else 1.0
+    t.close()
+    return Body(kind, mat, shift, thickness, ref, source)
+
+
+def _geometry(t: _Table, scene: str) -> dict:
+    g = {}
+    if scene in ("finite_journal", "long_journal", "pin"):
+        g["R"] = t.quantity("bore_radius" if scene != "pin" else "hole_radius", "length")
+        g["c"] = t.quantity("radial_clearance", "length")
+        if not g["c"] < g["R"]:
+            raise t.error("radial_clearance", f"must be below the radius ({g['R']} m), got {g['c']} m")
+        g["length"] = t.quantity("length", "length", None if scene != "finite_journal" else _REQUIRED)
+        if scene == "finite_journal":
+            g["supply_angle"] = t.quantity("supply_angle", "angle", "180 deg", positive=False)
+    else:
+        g["R_outer"] = t.quantity("outer_radius", "length")
+        g["R_inner"] = t.quantity("inner_radius", "length")
+        g["D"] = t.quantity("roller_diameter", "length")
+        g["Z"] = t.number("rollers", lo=3, integer=True)
+        g["clearance"] = t.quantity("diametral_clearance", "length", None, positive=False)
+        g["length"] = t.quantity("length", "length", None)
+        if not g["R_inner"] < g["R_outer"]:
+            raise t.error("inner_radius", f"must be below outer_radius, got {g['R_inner']} >= {g['R_outer']} m")
+        if g["clearance"] is not None and g["clearance"] < 0:
+            raise t.error("diametral_clearance", f"must be >= 0, got {g['clearance']} m")
+    t.close()
+    return g
+
+
+def _lubricant(root: _Table, scene: str):
+    t = root.table("lubricant", None if not scene.endswith("journal") else _REQUIRED)
+    if not scene.endswith("journal"):
+        if t is not None:
+            raise root.error("lubricant", f"a {scene} is dry: remove the [lubricant] table")
+        return None, "none (dry contact)"
+    from .torque import oil_viscosity, water_viscosity
+    law = t.choice("law", ("constant", "oil", "water"), "constant")
+    if law == "constant":
+        eta = t.quantity("viscosity", "viscosity")
+        f, what = (lambda T, eta=eta: eta), f"isoviscous, {eta:g} Pa s"
+    elif law == "water":
+        f, what = water_viscosity, "water (Vogel's equation)"
+    else:
+        nu40 = t.quantity("nu40", "kinematic viscosity")
+        nu100 = t.quantity("nu100", "kinematic viscosity")
+        rho = t.quantity("density", "density", "860 kg/m3")
+        try:
+            f = oil_viscosity(nu40, nu100, rho)
+        except ValueError as e:
+            raise t.error("nu100", str(e)) from None
+        what = f"oil, Walther (ASTM D341) through nu40 = {nu40:g} cSt, nu100 = {nu100:g} cSt, density {rho:g} kg/m3"
+    t.close()
+    return f, what
+
+
+def load_case(path, overrides=()) -> Case:
+    """Read and validate the case file ``path``; ``overrides`` are (dotted key, TOML value
+    text) pairs applied first (the CLI's ``--set``). Raises :class:`CaseError`."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as e:
+        raise CaseError(path, None, f"cannot read the case file ({e.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise CaseError(path, None, f"not valid TOML: {e}") from None
+    for key, value in overrides:
+        try:
+            v = tomllib.loads(f"v = {value}")["v"]
+        except tomllib.TOMLDecodeError:
+            raise CaseError(path, key, f"--set value {value!r} is not a TOML value (quote strings: '\"50 mm\"')") from None
+        d, parts = data, key.split(".")
+        for p in parts[:-1]:
+            d = d.setdefault(p, {})
+            if not isinstance(d, dict):
+                raise CaseError(path, key, "--set: not a table")
+        d[parts[-1]] = v
+    root = _Table(data, "", path)
+    case_t = root.table("case")
+    scene = case_t.choice("scene", SCENES)
+    name = case_t.raw("name", path.stem)
+    if not isinstance(name, str) or not name or any(ch in name for ch in "/\\") or name.startswith("."):
+        raise case_t.error("name", f"expected a folder name (no slashes, not starting with '.'), got {name!r}")
+    title = case_t.raw("title", name)
+    memory = case_t.choice("memory", ("periodic", "thesis"), "periodic")
+    cavitation = case_t.choice("cavitation", ("reynolds", "jfo", "half_sommerfeld", "sommerfeld"), "reynolds")
+    case_t.close()
+    geometry = _geometry(root.table("geometry"), scene)
+    viscosity, lubricant = _lubricant(root, scene)
+    housing = _body(root, "housing", scene, path.parent)
+    shaft = _body(root, "shaft", scene, path.parent) if scene != "pin" else Body("rigid")
+    if scene == "pin" and "shaft" in data:
+        raise root.error("shaft", "a pin joint's pin is rigid: remove the [shaft] table")
+    if scene == "roller" and housing.kind == "rigid" and shaft.kind == "rigid":
+        raise root.error("housing", "a roller bearing needs at least one deformable ring (housing or shaft)")
+
+    op = root.table("operating")
+    speeds, _ = _sweep(op, "speed", "angular speed")
+    if np.any(speeds <= 0):
+        raise op.error("speed", "speeds must be > 0 (the turning body and its sense: 'turning')")
+    loads, load_dim = _sweep(op, "load", None, load=True)
+    if np.any(loads <= 0):
+        raise op.error("load", "loads must be > 0 (the direction: 'load_angle')")
+    length = geometry.get("length")
+    if scene == "finite_journal" and load_dim == "force per length":
+        loads = loads * length
+    elif scene != "finite_journal" and load_dim == "force":
+        if length is None:
+            raise op.error("load", f"a force (N) on a {scene} needs geometry.length (the axial length) to give "
+                                   "the load per length; or give the load per length, e.g. \"6500 N/m\"")
+        loads = loads / length
+    temps = _sweep(op, "temperature", "temperature", None)
+    temperatures = tuple(float(x) for x in temps[0]) if temps is not None else (None,)
+    turning = op.choice("turning", ("shaft", "housing"), "shaft")
+    load_angle = op.quantity("load_angle", "angle", "-90 deg", positive=False)
+    op.close()
+    needs_T = [b for b in (housing, shaft) if b.shift is not None]
+    if temperatures == (None,) and (needs_T or lubricant.startswith(("oil", "water"))):
+        raise root.error("operating.temperature", "required: the lubricant's viscosity law or a material's shift "
+                         "law needs it (e.g. temperature = \"40 C\")")
+
+    g = root.table("grid", None) or _Table({}, "grid", path)
+    n = g.number("n", _DEFAULT_N[scene], lo=8, integer=True)
+    m = g.number("m", 8, lo=2, integer=True) if scene == "finite_journal" else None
+    g.close()
+    whirl = (1.0,)
+    co = root.table("coefficients", None)
+    if co is not None:
+        if not scene.endswith("journal"):
+            raise root.error("coefficients", "dynamic coefficients are for journal bearings only")
+        w = co.raw("whirl_ratio", [1.0])
+        w = w if isinstance(w, list) else [w]
+        if not w or any(isinstance(x, bool) or not isinstance(x, (int, float)) or x < 0 for x in w):
+            raise co.error("whirl_ratio", f"expected non-negative numbers (whirl / shaft speed), got {w!r}")
+        whirl = tuple(float(x) for x in w)
+        co.close()
+    if scene == "long_journal" and length is None:
+        raise root.error("geometry.length", "required for a long journal bearing: coefficients.csv holds the "
+                         "bearing's totals (N/m, N s/m), the long bearing's per-length values times it")
+    root.close()
+    return Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
+                np.asarray(speeds, float), np.asarray(loads, float), temperatures, turning, load_angle, memory,
+                cavitation, n, m, whirl, tuple(overrides))
+
+
+def describe_units() -> str:
+    """One line per dimension: the units accepted (for --help and the docs)."""
+    from .case_units import UNITS
+    return "\n".join(f"  {d}: {', '.join(u)}" for d, u in UNITS.items())
+
