@@ -182,12 +182,12 @@ def mermaid() -> str:
 
 
 def tree() -> str:
-    """Every module, its lines and the vjax modules it imports, folder by folder."""
+    """Every module and the vjax modules it imports, folder by folder."""
     mods, found = graph()
-    rows = ["| module | lines | imports |", "|---|---|---|"]
+    rows = ["| module | imports |", "|---|---|"]
     for m in sorted(mods):
         targets = ", ".join(sorted(t.removeprefix("vjax.") for t in found[m][0])) or "-"
-        rows.append(f"| `{m}` | {mods[m].read_text().count(chr(10))} | {targets} |")
+        rows.append(f"| `{m}` | {targets} |")
     return "\n".join(rows)
 
 

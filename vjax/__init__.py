@@ -17,7 +17,7 @@ import jax as _jax
 
 from ._core import checks
 from ._core.solve import ConvergenceError
-from .materials import Arrhenius, CreepSpectrum, Material, WLF
+from .materials import Arrhenius, CreepSpectrum, Lubricant, Material, WLF, as_lubricant
 from . import bodies
 from .bodies import Body, disc, green, half_plane, hole, land, layer3d, liner, sleeve
 from .bodies.operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
@@ -31,7 +31,7 @@ from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalC
 from . import reference
 from .sweep import initialize_processes, sweep
 
-__all__ = ["Arrhenius", "CreepSpectrum", "Material", "WLF", "RingOperator", "effective_compliance",
+__all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lubricant", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "bodies", "green", "layer3d", "Body", "disc", "half_plane",
            "hole", "liner", "sleeve", "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
            "PinOptions", "PinResult", "pin_in_hole", "pin_patch_speed", "pin_shaft_speed",
