@@ -54,7 +54,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
-from vjax import _film2d  # noqa: E402
+from vjax.films import film2d as _film2d  # noqa: E402
 
 RB, C, ETA, TAU = 0.1, 5e-4, 1e-3, 1.0
 EINF, E0, NU = 100e6, 1e6, 0.5

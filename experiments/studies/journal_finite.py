@@ -142,7 +142,8 @@ def main(out_dir="experiments/out", quick=False):
     import jax.numpy as jnp
     import numpy as np
     import vjax
-    from vjax import FiniteJournalOptions, JournalOptions, journal_finite, reference
+    from vjax import FiniteJournalOptions, JournalOptions, reference
+    from vjax.scenes.journal.finite import coefficients as finite_coefficients, film as finite_film, setup as finite_setup
 
     lines = [f"# finite journal bearing (issue 27); {_common.device_note()}", ""]
     grids = [(48, 16)] if quick else [(48, 16), (96, 32)]
@@ -217,10 +218,10 @@ def main(out_dir="experiments/out", quick=False):
         when they are traced: JAX's caches are cleared at each switch)."""
         if baseline != solver_setting.baseline:
             jax.clear_caches()
-            journal_finite.EXACT_WIDTH = 10**9 if baseline else EXACT_WIDTH
+            finite_film.EXACT_WIDTH = 10**9 if baseline else EXACT_WIDTH
             solver_setting.baseline = baseline
     solver_setting.baseline = False
-    EXACT_WIDTH = journal_finite.EXACT_WIDTH
+    EXACT_WIDTH = finite_film.EXACT_WIDTH
 
     grids = [(64, 16), (128, 32)] if quick else [(64, 16), (128, 32), (256, 64), (512, 128), (1024, 256)]
     lines += ["", f"Warm time per point (L/D = 1, Reynolds, the aligned bearing's half width: N = n m / 2 cell "
@@ -257,11 +258,11 @@ def main(out_dir="experiments/out", quick=False):
     for n, m in [(32, 8), (64, 16)] if quick else [(32, 8), (64, 16), (128, 32), (256, 64)]:
         kw = dict(omega_shaft=WJ, housing=liner, options=FiniteJournalOptions(n=n, m=m))
         steady = vjax.journal_bearing(R, C, ETA, W, length=D, **kw)
-        pr, cfg = journal_finite.setup(R, C, ETA, W, D, **kw)
+        pr, cfg = finite_setup.setup(R, C, ETA, W, D, **kw)
         bodies = ((liner, R, 0.0), (None, R - C, -WJ))
         row = f"{n}x{m} (N = {n * (m - 1)}):"
         for dense in (False, True) if n * (m - 1) <= 1000 else (False,):
-            go = lambda: journal_finite.coefficients(  # noqa: E731
+            go = lambda: finite_coefficients.coefficients(  # noqa: E731
                 steady, pr, dataclasses.replace(cfg, krylov=not dense), bodies, jnp.asarray(whirl))
             t = time.perf_counter()
             result = go()
