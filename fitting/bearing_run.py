@@ -73,14 +73,15 @@ class _Scene:
             kw.update(length=g["length"], supply_angle=g["supply_angle"],
                       options=self.vjax.FiniteJournalOptions(n=c.n, m=c.m))
         else:
-            kw.update(options=self.vjax.JournalOptions(n=c.n), memory=c.memory)
-            load = load / g["length"]           # the long bearing takes N/m
+            kw.update(options=self.vjax.JournalOptions(n=c.n))     # the load is per length (N/m)
         return (g["R"], g["c"], eta, load), kw, eta
 
     def solve(self, load, speed, initial):
         v, c, g = self.vjax, self.case, self.case.geometry
         if c.journal:
             args, kw, _ = self._journal_args(load)
+            if c.scene == "long_journal":
+                kw["memory"] = c.memory         # the steady state's; the coefficients are periodic
             return v.journal_bearing(*args, initial=initial, **kw, **self.speeds(speed))
         if c.scene == "roller":
             return v.roller_bearing(self.housing, self.shaft, g["R_outer"], g["R_inner"], g["D"], g["Z"], load,
@@ -199,7 +200,7 @@ def run_case(case, progress=True, stream=None) -> list:
                 result = None
                 break
         if reasons and (result is None or not bool(np.asarray(result.converged))):
-            p.reason = reasons[-1]
+            p.reason, result = reasons[-1], None      # an unconverged state's numbers are not reported
         else:
             prev = result
             if case.journal:

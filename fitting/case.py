@@ -9,6 +9,7 @@ values with a dimension are strings with their unit (:mod:`fitting.case_units`).
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import os
 import tomllib
 from pathlib import Path
@@ -54,6 +55,9 @@ class _Table:
         if name in self.data:
             return self.data[name]
         if default is _REQUIRED:
+            near = difflib.get_close_matches(name, [k for k in self.data if k not in self.asked], 1)
+            if near:                         # a misspelling: name the key as written
+                raise self.error(near[0], f"unknown key; did you mean {name!r}?")
             raise self.error(name, "missing (required)")
         return default
 
@@ -92,7 +96,9 @@ class _Table:
     def close(self):
         extra = [k for k in self.data if k not in self.asked]
         if extra:
-            raise self.error(extra[0], f"unknown key; expected one of {', '.join(sorted(set(self.asked)))}")
+            near = difflib.get_close_matches(extra[0], self.asked, 1)
+            hint = f"did you mean {near[0]!r}? " if near else ""
+            raise self.error(extra[0], f"unknown key; {hint}expected one of {', '.join(sorted(set(self.asked)))}")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -1,0 +1,200 @@
+"""vjax-bearing (fitting.bearing_cli): refusals of bad input, the coefficients file read back by
+an independent reader of its documented layout (docs/bearing_files.md) against vjax called
+directly, a failed point reported while the others go on, and one shipped example end to end."""
+import csv
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fitting import bearing_cli
+from fitting.case_units import parse
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+# a long journal bearing with a soft viscoelastic bore; 2e4 N/m is beyond the solver (the bore
+# would deform the film by ~200 clearances), 200 N/m converges at both speeds
+LONG = """
+[case]
+scene = "long_journal"
+name = "long_soft"
+
+[geometry]
+bore_radius = "50 mm"
+radial_clearance = "50 um"
+length = "0.1 m"
+
+[lubricant]
+viscosity = "0.01 Pa s"
+
+[housing]
+body = "hole"
+material = { model = "sls", E0 = "1 MPa", Einf = "10 MPa", tau = "10 ms", nu = 0.45 }
+
+[operating]
+speed = ["10 rad/s", "1000 rad/s"]
+load = ["200 N/m", "20000 N/m"]
+
+[grid]
+n = 64
+
+[coefficients]
+whirl_ratio = [0.0, 0.5, 1.0]
+"""
+
+JOURNAL = """
+[case]
+scene = "finite_journal"
+name = "lined"
+
+[geometry]
+bore_radius = "25 mm"
+radial_clearance = "50 um"
+length = "50 mm"
+
+[lubricant]
+law = "oil"
+nu40 = "32 cSt"
+nu100 = "5.4 cSt"
+
+[housing]
+body = "liner"
+thickness = "2 mm"
+material = "liner.json"
+
+[operating]
+speed = ["1000 rpm"]
+load = ["1 kN"]
+temperature = "50 C"
+"""
+
+
+def _write(tmp_path, text, name="case.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _run(capsys, *argv):
+    code = bearing_cli.main([str(a) for a in argv] + ["--no-cache"])
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_units():
+    assert parse("50 mm", "length") == pytest.approx(0.05)
+    assert parse("3000 rpm", "angular speed") == pytest.approx(100 * math.pi)
+    assert parse("313.15 K", "temperature") == pytest.approx(40.0)
+    assert parse("32cSt", "kinematic viscosity") == 32.0
+
+
+@pytest.mark.parametrize("edit, key, words", [
+    (("bore_radius = \"25 mm\"", "bore_radios = \"25 mm\""), "geometry.bore_radios", "unknown key"),
+    (("radial_clearance = \"50 um\"", "radial_clearance = 0.00005"), "geometry.radial_clearance", "missing unit"),
+    (("radial_clearance = \"50 um\"", "radial_clearance = \"-50 um\""), "geometry.radial_clearance", "> 0"),
+    (("radial_clearance = \"50 um\"", "radial_clearance = \"30 mm\""), "geometry.radial_clearance", "below the radius"),
+    (("radial_clearance = \"50 um\"", "radial_clearance = \"50 furlong\""), "geometry.radial_clearance", "unknown unit"),
+    (("material = \"liner.json\"", "material = \"missing.json\""), "housing.material", "does not load"),
+    (("material = \"liner.json\"", "material = \"broken.json\""), "housing.material", "does not load"),
+    (("temperature = \"50 C\"\n", ""), "operating.temperature", "required"),
+    (("scene = \"finite_journal\"", "scene = \"thrust\""), "case.scene", "expected one of"),
+    (("[operating]", "[operating]\nspeed_max = \"1 rpm\""), "operating.speed_max", "unknown key"),
+    (("load = [\"1 kN\"]", "load = [\"1 kN\", \"2 Pa\"]"), "operating.load", "unknown unit"),
+])
+def test_bad_input_refused_naming_the_key_and_nothing_written(tmp_path, capsys, edit, key, words):
+    shutil.copy(EXAMPLES / "polymer_liner.json", tmp_path / "liner.json")
+    (tmp_path / "broken.json").write_text('{"kind": "prony", "E0": 1e6, "moduli": [1e6], "nu": 0.4}')
+    assert edit[0] in JOURNAL
+    case = _write(tmp_path, JOURNAL.replace(edit[0], edit[1]))
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    out = tmp_path / "results"
+    code, _, err = _run(capsys, case, "--out", out)
+    assert code == 2
+    assert str(case) in err and f"{key}:" in err and words in err, err
+    assert not out.exists()
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before     # no file, no temporary folder
+
+
+def test_bad_set_value_refused(tmp_path, capsys):
+    shutil.copy(EXAMPLES / "polymer_liner.json", tmp_path / "liner.json")
+    case = _write(tmp_path, JOURNAL)
+    code, _, err = _run(capsys, case, "--out", tmp_path / "r", "--set", "grid.n=many")
+    assert code == 2 and "grid.n" in err and not (tmp_path / "r").exists()
+    code, _, err = _run(capsys, case, "--out", tmp_path / "r", "--set", "grid.n=4")
+    assert code == 2 and "grid.n" in err and not (tmp_path / "r").exists()
+
+
+def _read_coefficients(path):
+    """An independent reader of docs/bearing_files.md's layout: one header line, then per row
+    kxx, kxy, kyx, kyy (N/m), cxx, cxy, cyx, cyy (N s/m), frequency (whirl, rad/s), speed (rad/s)."""
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    K = np.array([[[float(r["kxx"]), float(r["kxy"])], [float(r["kyx"]), float(r["kyy"])]] for r in rows])
+    C = np.array([[[float(r["cxx"]), float(r["cxy"])], [float(r["cyx"]), float(r["cyy"])]] for r in rows])
+    return rows, K, C
+
+
+def test_long_journal_coefficients_and_failed_points(tmp_path, capsys):
+    import vjax
+    case = _write(tmp_path, LONG)
+    code, table, err = _run(capsys, case, "--out", tmp_path)
+    folder = tmp_path / "long_soft"
+    assert code == 1, err                                   # some points failed: status 1, results written
+    with open(folder / "points.csv", newline="") as fh:
+        points = list(csv.DictReader(fh))
+    assert [p["converged"] for p in points] == ["True", "True", "False", "False"]
+    for p in points[2:]:                                     # the solver's reason, and no numbers
+        assert "did not converge" in p["reason"] and "clearances" in p["reason"] and p["eccentricity"] == ""
+    assert table.count("FAILED") == 2 and "did not converge" in (folder / "report.md").read_text()
+
+    rows, K, C = _read_coefficients(folder / "coefficients.csv")
+    assert len(rows) == 2 * 3                                # the converged points x the whirl ratios
+    L, c = 0.1, 5e-5
+    body = vjax.hole(vjax.Material.sls(1e6, 1e7, 0.01, 0.45))
+    for i, w in enumerate((10.0, 1000.0)):
+        whirl = np.array([0.0, 0.5, 1.0]) * w
+        co = vjax.journal_coefficients(0.05, c, 0.01, 200.0, whirl, housing=body, omega_shaft=w,
+                                       options=vjax.JournalOptions(n=64))
+        mine = slice(3 * i, 3 * i + 3)
+        assert [float(r["frequency"]) for r in rows[mine]] == pytest.approx(whirl)
+        assert [float(r["speed"]) for r in rows[mine]] == pytest.approx([w] * 3)
+        # the file holds the bearing's totals: the long bearing's per-length K, C times L
+        np.testing.assert_allclose(K[mine], np.asarray(co.stiffness) * L, rtol=1e-6, atol=1e-9 * abs(K[mine]).max())
+        np.testing.assert_allclose(C[mine], np.asarray(co.damping) * L, rtol=1e-6, atol=1e-9 * abs(C[mine]).max())
+        W = 200.0 * L
+        for r, k, d in zip(rows[mine], K[mine], C[mine]):
+            assert float(r["kxy_bar"]) == pytest.approx(k[0, 1] * c / W, rel=1e-12)
+            assert float(r["cyy_bar"]) == pytest.approx(d[1, 1] * c * w / W, rel=1e-12)
+    # the viscoelastic bore answers at its own frequency: K depends on the whirl
+    assert abs(K[0, 1, 1] - K[2, 1, 1]) > 1e-3 * abs(K[0]).max()
+    # ROSS's table reader converts units when a cell says rpm, lb or inches: none may
+    text = (folder / "coefficients.csv").read_text().lower()
+    assert not any(word in text for word in ("rpm", "lb", "inches"))
+
+
+def test_pin_example_end_to_end(tmp_path, capsys):
+    import vjax
+    speeds = ["0.1 rad/s", "10 rad/s"]
+    code, table, err = _run(capsys, EXAMPLES / "pin_joint.toml", "--out", tmp_path, "--set", "grid.n=256",
+                            "--set", "operating.speed=" + str(speeds).replace("'", '"'))
+    folder = tmp_path / "pin_joint"
+    assert code == 0, err
+    assert sorted(p.name for p in folder.iterdir()) == ["points.csv", "report.md", "torque_friction.png"]
+    assert [p for p in tmp_path.iterdir() if p.name.startswith(".")] == []     # no temporary left
+    report = (folder / "report.md").read_text()
+    assert "hole_radius = \"80 mm\"" in report and "--set grid.n=256" in report and "![torque_friction.png]" in report
+    with open(folder / "points.csv", newline="") as fh:
+        points = list(csv.DictReader(fh))
+    assert len(points) == 2 and "| ok |" in table
+    m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)
+    for p, w in zip(points, (0.1, 10.0)):
+        r = vjax.pin_in_hole(m, 0.08, 0.005, 2800.0, omega_shaft=w, load_angle=0.0, options=vjax.PinOptions(n=256))
+        assert float(p["torque_housing_Nm_per_m"]) == pytest.approx(float(r.torque), rel=1e-8)
+        assert float(p["friction_coefficient"]) == pytest.approx(float(r.torque) / (2800.0 * 0.08), rel=1e-8)
+    # a second run replaces the folder whole
+    (folder / "stale.txt").write_text("x")
+    assert _run(capsys, EXAMPLES / "pin_joint.toml", "--out", tmp_path, "--set", "grid.n=256",
+                "--set", 'operating.speed="1 rad/s"', "--quiet")[0] == 0
+    assert not (folder / "stale.txt").exists()
