@@ -176,7 +176,8 @@ def _inputs(case) -> list:
              "clearance": "diametral clearance", "supply_angle": "groove angle from the load (rad)"}
     for k, v in g.items():
         if v is not None:
-            lines.append(f"| {names.get(k, k)} | {v:.6g} |")
+            unit = "" if k in ("Z", "supply_angle") else " m"
+            lines.append(f"| {names.get(k, k)} | {v:.6g}{unit} |")
     for side, b in (("housing", case.housing), ("shaft", case.shaft)):
         if b.kind == "rigid":
             lines.append(f"| {side} | rigid |")

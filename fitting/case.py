@@ -201,7 +201,7 @@ def _material(t: _Table, base: Path):
             raise t.error("material", f"the material file does not load: {e}") from None
         if modulus != "E":
             raise t.error("material", f"{path} holds a shear modulus (G); the bearings take tensile moduli (E)")
-        return mat, shift, os.fspath(path)
+        return mat, shift, f"{v} ({path})"
     m = _Table(v, t.path("material"), t.file)
     model = m.choice("model", ("sls", "prony", "elastic"))
     nu = m.number("nu", lo=-1.0, hi=0.5)

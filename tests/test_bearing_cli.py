@@ -198,3 +198,24 @@ def test_pin_example_end_to_end(tmp_path, capsys):
     assert _run(capsys, EXAMPLES / "pin_joint.toml", "--out", tmp_path, "--set", "grid.n=256",
                 "--set", 'operating.speed="1 rad/s"', "--quiet")[0] == 0
     assert not (folder / "stale.txt").exists()
+
+
+def test_finite_journal_coefficients_read_back(tmp_path, capsys):
+    """The finite bearing's path: rigid, isoviscous, 16 x 4 cells, two speeds (the second warm-started)."""
+    import vjax
+    text = JOURNAL.replace('law = "oil"\nnu40 = "32 cSt"\nnu100 = "5.4 cSt"', 'viscosity = "20 mPa s"') \
+                  .replace('body = "liner"\nthickness = "2 mm"\nmaterial = "liner.json"', 'body = "rigid"') \
+                  .replace('speed = ["1000 rpm"]', 'speed = ["1000 rpm", "3000 rpm"]') \
+                  .replace('temperature = "50 C"\n', "") + '\n[grid]\nn = 16\nm = 4\n'
+    code, _, err = _run(capsys, _write(tmp_path, text), "--out", tmp_path)
+    assert code == 0, err
+    rows, K, C = _read_coefficients(tmp_path / "lined" / "coefficients.csv")
+    assert len(rows) == 2
+    opt = vjax.FiniteJournalOptions(n=16, m=4)
+    for i, w in enumerate((1000 * math.pi / 30, 3000 * math.pi / 30)):
+        co = vjax.journal_coefficients(0.025, 5e-5, 0.02, 1000.0, np.array([w]), omega_shaft=w, length=0.05,
+                                       options=opt)
+        assert float(rows[i]["frequency"]) == pytest.approx(w)
+        np.testing.assert_allclose(K[i], np.asarray(co.stiffness)[0], rtol=1e-6, atol=1e-9 * abs(K[i]).max())
+        np.testing.assert_allclose(C[i], np.asarray(co.damping)[0], rtol=1e-6, atol=1e-9 * abs(C[i]).max())
+    assert (tmp_path / "lined" / "film_pressure.png").exists() and (tmp_path / "lined" / "eccentricity_locus.png").exists()
