@@ -213,6 +213,7 @@ def run_case(case, progress=True, stream=None) -> list:
         if p.reason and result is not None:
             p.row["converged"] = False
         points.append(p)
-        what = (f"T = {T:g} C, " if T is not None else "") + f"load {W:.4g}, {w * 60 / (2 * math.pi):.4g} rpm"
+        unit = "N" if case.scene == "finite_journal" else "N/m"
+        what = (f"T = {T:g} C, " if T is not None else "") + f"load {W:.4g} {unit}, {w * 60 / (2 * math.pi):.4g} rpm"
         bar.update(i + 1, what + (": FAILED" if p.reason else ""))
     return points

@@ -9,96 +9,20 @@ values with a dimension are strings with their unit (:mod:`fitting.case_units`).
 from __future__ import annotations
 
 import dataclasses
-import difflib
+import math
 import os
 import tomllib
 from pathlib import Path
 
 import numpy as np
 
-from .case_units import UnitError, parse, parse_load
+from .case_table import REQUIRED, CaseError, Table, positive_quantity, sweep
 
 __all__ = ["Case", "Body", "CaseError", "load_case", "SCENES"]
 
 SCENES = ("finite_journal", "long_journal", "roller", "pin")
-_REQUIRED = object()
 _DEFAULT_N = {"finite_journal": 32, "long_journal": 256, "roller": 512, "pin": 512}
 _BODY_KINDS = {"housing": ("rigid", "hole", "liner", "half_plane"), "shaft": ("rigid", "disc", "sleeve", "half_plane")}
-
-
-class CaseError(ValueError):
-    """Bad input in a case file: ``file``, ``key`` (dotted, e.g. "geometry.radial_clearance")
-    and the problem with what is expected."""
-
-    def __init__(self, file, key, problem):
-        self.file, self.key = os.fspath(file), key
-        super().__init__(f"{self.file}: {key}: {problem}" if key else f"{self.file}: {problem}")
-
-
-class _Table:
-    """One TOML table: typed getters that name the key on error, and :meth:`close`, which
-    refuses keys nobody asked for (a misspelt key is an error, not a silent default)."""
-
-    def __init__(self, data, key, file):
-        if not isinstance(data, dict):
-            raise CaseError(file, key, f"expected a table, got {data!r}")
-        self.data, self.key, self.file, self.asked = data, key, file, []
-
-    def path(self, name):
-        return f"{self.key}.{name}" if self.key else name
-
-    def error(self, name, problem):
-        return CaseError(self.file, self.path(name), problem)
-
-    def raw(self, name, default=_REQUIRED):
-        self.asked.append(name)
-        if name in self.data:
-            return self.data[name]
-        if default is _REQUIRED:
-            near = difflib.get_close_matches(name, [k for k in self.data if k not in self.asked], 1)
-            if near:                         # a misspelling: name the key as written
-                raise self.error(near[0], f"unknown key; did you mean {name!r}?")
-            raise self.error(name, "missing (required)")
-        return default
-
-    def quantity(self, name, dim, default=_REQUIRED, positive=True):
-        v = self.raw(name, default)
-        if v is None:
-            return None
-        try:
-            x = parse(v, dim)
-        except UnitError as e:
-            raise self.error(name, str(e)) from None
-        if positive and not x > 0:
-            raise self.error(name, f"must be > 0, got {v!r}")
-        return x
-
-    def number(self, name, default=_REQUIRED, lo=None, hi=None, integer=False):
-        v = self.raw(name, default)
-        if v is None:
-            return None
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or (integer and not isinstance(v, int)):
-            raise self.error(name, f"expected {'an integer' if integer else 'a number'} (no unit), got {v!r}")
-        if (lo is not None and v < lo) or (hi is not None and v > hi):
-            raise self.error(name, f"must be in [{lo}, {hi}], got {v!r}")
-        return v
-
-    def choice(self, name, options, default=_REQUIRED):
-        v = self.raw(name, default)
-        if v not in options:
-            raise self.error(name, f"expected one of {', '.join(map(repr, options))}, got {v!r}")
-        return v
-
-    def table(self, name, default=_REQUIRED):
-        v = self.raw(name, default)
-        return None if v is None else _Table(v, self.path(name), self.file)
-
-    def close(self):
-        extra = [k for k in self.data if k not in self.asked]
-        if extra:
-            near = difflib.get_close_matches(extra[0], self.asked, 1)
-            hint = f"did you mean {near[0]!r}? " if near else ""
-            raise self.error(extra[0], f"unknown key; {hint}expected one of {', '.join(sorted(set(self.asked)))}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -156,38 +80,7 @@ class Case:
         return [(T, W, w) for T in self.temperatures for W in self.loads for w in self.speeds]
 
 
-def _sweep(t: _Table, name, dim, default=_REQUIRED, load=False):
-    """A list of values, one value, or a range {from, to, points, spacing}."""
-    v = t.raw(name, default)
-    if v is default:
-        return v
-    one = (lambda x, k: parse_load(x)) if load else (lambda x, k: (parse(x, dim), dim))
-    try:
-        if isinstance(v, dict):
-            r = _Table(v, t.path(name), t.file)
-            a = one(r.raw("from"), "from")
-            b = one(r.raw("to"), "to")
-            k = r.number("points", lo=1, integer=True)
-            spacing = r.choice("spacing", ("linear", "log"), "linear")
-            r.close()
-            if a[1] != b[1]:
-                raise r.error("to", f"must have the dimension of 'from' ({a[1]}), got {b[1]}")
-            if spacing == "log" and not (a[0] > 0 and b[0] > 0):
-                raise r.error("spacing", "'log' needs positive 'from' and 'to'")
-            vals = np.geomspace(a[0], b[0], k) if spacing == "log" else np.linspace(a[0], b[0], k)
-            return vals, a[1]
-        items = v if isinstance(v, list) else [v]
-        if not items:
-            raise t.error(name, "is empty")
-        got = [one(x, i) for i, x in enumerate(items)]
-        if len({d for _, d in got}) > 1:
-            raise t.error(name, "mixes forces and forces per length")
-        return np.array([x for x, _ in got]), got[0][1]
-    except UnitError as e:
-        raise t.error(name, str(e) + " (or a list of them, or {from, to, points, spacing})") from None
-
-
-def _material(t: _Table, base: Path):
+def _material(t: Table, base: Path):
     """A material: a string (a material.json of vjax-fit, relative to the case file) or an
     inline table (model = sls | prony | elastic, optional shift). Returns (Material, shift, source)."""
     import vjax
@@ -202,7 +95,7 @@ def _material(t: _Table, base: Path):
         if modulus != "E":
             raise t.error("material", f"{path} holds a shear modulus (G); the bearings take tensile moduli (E)")
         return mat, shift, f"{v} ({path})"
-    m = _Table(v, t.path("material"), t.file)
+    m = Table(v, t.path("material"), t.file)
     model = m.choice("model", ("sls", "prony", "elastic"))
     nu = m.number("nu", lo=-1.0, hi=0.5)
     try:
@@ -215,8 +108,8 @@ def _material(t: _Table, base: Path):
             moduli, times = (m.raw(k) for k in ("moduli", "times"))
             if not isinstance(moduli, list) or not isinstance(times, list) or len(moduli) != len(times) or not moduli:
                 raise m.error("moduli", "moduli and times must be lists of the same, non-zero length")
-            mods = [_one(m, "moduli", x, "modulus") for x in moduli]
-            tims = [_one(m, "times", x, "time") for x in times]
+            mods = [positive_quantity(m, "moduli", x, "modulus") for x in moduli]
+            tims = [positive_quantity(m, "times", x, "time") for x in times]
             mat = vjax.Material.prony(m.quantity("E0", "modulus"), np.array(mods), np.array(tims), nu)
     except ValueError as e:
         if isinstance(e, CaseError):
@@ -234,17 +127,7 @@ def _material(t: _Table, base: Path):
     return mat, shift, f"inline {model}"
 
 
-def _one(t: _Table, name, x, dim):
-    try:
-        x = parse(x, dim)
-    except UnitError as e:
-        raise t.error(name, str(e)) from None
-    if not x > 0:
-        raise t.error(name, f"values must be > 0, got {x!r}")
-    return x
-
-
-def _body(root: _Table, side: str, scene: str, base: Path) -> Body:
+def _body(root: Table, side: str, scene: str, base: Path) -> Body:
     t = root.table(side, None)
     if t is None:
         return Body("rigid")
@@ -264,14 +147,14 @@ def _body(root: _Table, side: str, scene: str, base: Path) -> Body:
     return Body(kind, mat, shift, thickness, ref, source)
 
 
-def _geometry(t: _Table, scene: str) -> dict:
+def _geometry(t: Table, scene: str) -> dict:
     g = {}
     if scene in ("finite_journal", "long_journal", "pin"):
         g["R"] = t.quantity("bore_radius" if scene != "pin" else "hole_radius", "length")
         g["c"] = t.quantity("radial_clearance", "length")
         if not g["c"] < g["R"]:
             raise t.error("radial_clearance", f"must be below the radius ({g['R']} m), got {g['c']} m")
-        g["length"] = t.quantity("length", "length", None if scene != "finite_journal" else _REQUIRED)
+        g["length"] = t.quantity("length", "length", None if scene != "finite_journal" else REQUIRED)
         if scene == "finite_journal":
             g["supply_angle"] = t.quantity("supply_angle", "angle", "180 deg", positive=False)
     else:
@@ -289,8 +172,8 @@ def _geometry(t: _Table, scene: str) -> dict:
     return g
 
 
-def _lubricant(root: _Table, scene: str):
-    t = root.table("lubricant", None if not scene.endswith("journal") else _REQUIRED)
+def _lubricant(root: Table, scene: str):
+    t = root.table("lubricant", None if not scene.endswith("journal") else REQUIRED)
     if not scene.endswith("journal"):
         if t is not None:
             raise root.error("lubricant", f"a {scene} is dry: remove the [lubricant] table")
@@ -338,7 +221,7 @@ def load_case(path, overrides=()) -> Case:
             if not isinstance(d, dict):
                 raise CaseError(path, key, "--set: not a table")
         d[parts[-1]] = v
-    root = _Table(data, "", path)
+    root = Table(data, "", path)
     case_t = root.table("case")
     scene = case_t.choice("scene", SCENES)
     name = case_t.raw("name", path.stem)
@@ -358,10 +241,10 @@ def load_case(path, overrides=()) -> Case:
         raise root.error("housing", "a roller bearing needs at least one deformable ring (housing or shaft)")
 
     op = root.table("operating")
-    speeds, _ = _sweep(op, "speed", "angular speed")
+    speeds, _ = sweep(op, "speed", "angular speed")
     if np.any(speeds <= 0):
         raise op.error("speed", "speeds must be > 0 (the turning body and its sense: 'turning')")
-    loads, load_dim = _sweep(op, "load", None, load=True)
+    loads, load_dim = sweep(op, "load", None, load=True)
     if np.any(loads <= 0):
         raise op.error("load", "loads must be > 0 (the direction: 'load_angle')")
     length = geometry.get("length")
@@ -372,7 +255,7 @@ def load_case(path, overrides=()) -> Case:
             raise op.error("load", f"a force (N) on a {scene} needs geometry.length (the axial length) to give "
                                    "the load per length; or give the load per length, e.g. \"6500 N/m\"")
         loads = loads / length
-    temps = _sweep(op, "temperature", "temperature", None)
+    temps = sweep(op, "temperature", "temperature", None)
     temperatures = tuple(float(x) for x in temps[0]) if temps is not None else (None,)
     turning = op.choice("turning", ("shaft", "housing"), "shaft")
     load_angle = op.quantity("load_angle", "angle", "-90 deg", positive=False)
@@ -381,8 +264,22 @@ def load_case(path, overrides=()) -> Case:
     if temperatures == (None,) and (needs_T or lubricant.startswith(("oil", "water"))):
         raise root.error("operating.temperature", "required: the lubricant's viscosity law or a material's shift "
                          "law needs it (e.g. temperature = \"40 C\")")
+    for side, b in (("housing", housing), ("shaft", shaft)):
+        for T in temperatures if b.shift is not None else ():
+            try:                                 # a shift law's own range (a fitted table's)
+                times = np.asarray(b.material.at_temperature(b.shift, T).times)
+                why = "" if np.all(np.isfinite(times) & (times > 0)) else ": relaxation times not finite"
+            except ValueError as e:
+                why = f": {e}"
+            if why:
+                raise root.error("operating.temperature", f"{T:g} C is outside the {side} material's shift law{why}")
+    if viscosity is not None:
+        for T in temperatures:
+            eta = float(viscosity(T if T is not None else 20.0))
+            if not (math.isfinite(eta) and eta > 0):
+                raise root.error("operating.temperature", f"the lubricant's viscosity at {T} C is {eta!r}")
 
-    g = root.table("grid", None) or _Table({}, "grid", path)
+    g = root.table("grid", None) or Table({}, "grid", path)
     n = g.number("n", _DEFAULT_N[scene], lo=8, integer=True)
     m = g.number("m", 8, lo=2, integer=True) if scene == "finite_journal" else None
     g.close()
@@ -404,10 +301,4 @@ def load_case(path, overrides=()) -> Case:
     return Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
                 np.asarray(speeds, float), np.asarray(loads, float), temperatures, turning, load_angle, memory,
                 cavitation, n, m, whirl, tuple(overrides))
-
-
-def describe_units() -> str:
-    """One line per dimension: the units accepted (for --help and the docs)."""
-    from .case_units import UNITS
-    return "\n".join(f"  {d}: {', '.join(u)}" for d, u in UNITS.items())
 
