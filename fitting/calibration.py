@@ -204,6 +204,9 @@ def _smooth_fits(table, start, nu, per_decade, max_terms):
     return fits, info
 
 
+E0_FLOOR = 1e-12     # relative to the glassy modulus: the start of a liquid's log E0 (_few_terms)
+
+
 def _few_terms(table, fit, n):
     """``n`` terms with free relaxation times from the smooth ``fit``: :func:`fitting.compact.fit_terms`
     to the points under the fit's law (times within the data's reduced-time window plus
@@ -215,12 +218,17 @@ def _few_terms(table, fit, n):
     m = fit.material
     full = compact.Series(float(m.E0), np.asarray(m.moduli), np.asarray(m.times))
     lo, hi = -math.log10(wr.max()), -math.log10(wr.min())
+    liquid = compact.is_liquid(full, float(wr.min()))     # no equilibrium modulus: E0 held near 0
     best = None
     for times in (None, 10.0 ** (lo + (hi - lo) * (np.arange(n) + 0.5) / n)):
         s = compact.fit_terms(full, n, (wr.min(), wr.max()), target=(wr, table.storage, table.loss), times=times,
-                              **compact.DATA_FIT)
-        f = prony.refine(table, Material.prony(s.E0, s.moduli, s.times, m.nu), fit.shift, max_iter=300,
-                         weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=compact.MARGIN_DECADES)
+                              long_term=not liquid, **compact.DATA_FIT)
+        # a liquid's E0 is 0 here (no equilibrium modulus); vjax.Material wants E0 > 0 and the
+        # refinement works in log E0: it holds E0 at a floor far below the data instead
+        E0 = max(s.E0, E0_FLOOR * float(np.sum(s.moduli)))
+        f = prony.refine(table, Material.prony(E0, s.moduli, s.times, m.nu), fit.shift, max_iter=300,
+                         weights=WEIGHTS, robust=ROBUST, ftol=FTOL, tau_margin=compact.MARGIN_DECADES,
+                         fix_E0=liquid)
         best = f if best is None or f.rms < best.rms else best
     return best
 

@@ -28,16 +28,19 @@ How the count is chosen (:func:`choose`): the smallest n at which one of the two
   separately (relaxation data: for E(t)); without the data, its median deviation from the full
   fit over the window is at most ``TOLERANCE - 1`` times the full fit's median error recorded
   in the material JSON (a deviation d adds at most |d| to each point's error), and
-* is smooth: its loss modulus has at most ``MAX_EXTREMA`` (3) local extrema over the window
-  (or no more than the full fit's, if that has more),
+* is smooth within the data's own scatter: its loss-modulus ripple (:func:`ripple_of`: the
+  largest swing, in decades of log10 E'', of a local extremum the full fit does not have) is
+  below the scatter of the data about the full fit (:func:`scatter`: the full fit's median
+  |log10(E''_fit / E''_measured)| over the DMA points, E(t) for relaxation data; without the
+  data the recorded one). A swing smaller than the scatter is one the data cannot tell from
+  noise, so it is not counted as an extremum,
 
-is kept (``met`` True); the free series is tried up to ``MAX_TERMS`` (20) terms, the placed one
-up to the full fit's count or a cap ``max_terms``; the counts tried double from 1 until one
-qualifies, then bisect below it. With a cap too small for smoothness the
-smallest accurate count is kept, or the cap if none is accurate, and :class:`Choice` says so
-(``met`` False). Measured on the shipped data (README, ``python -m experiments.fem_export``):
-smoothness takes 39-44 terms over their 26-40 decades; 20 terms leave a ripple of 28-36
-extrema.
+is kept (``met`` True). The placed series is tried up to the full fit's count or a cap
+``max_terms``, the free one up to ``FREE_MAX_TERMS`` (20: beyond that its Levenberg-Marquardt
+costs more than it gains over placement); the counts tried double from 1 until one qualifies,
+then bisect below it. With a cap too small for smoothness the smallest accurate count is
+kept, or the cap if none is accurate, and :class:`Choice` says so (``met`` False) with the
+ripple it has: what the cap costs.
 
 Moduli are in the series' own unit (Pa), times in s, frequencies in rad/s (reduced, at the
 material's T_ref).
@@ -52,13 +55,15 @@ import numpy as np
 from . import optim
 from .evaluate import loss_extrema
 
-__all__ = ["Series", "Choice", "fit_terms", "placed_terms", "placement", "ripple", "choose", "deviation",
-           "MAX_TERMS", "TOLERANCE", "MARGIN_DECADES", "MAX_EXTREMA"]
+__all__ = ["Series", "Choice", "fit_terms", "placed_terms", "placement", "ripple", "ripple_of", "scatter",
+           "choose", "deviation", "is_liquid", "FREE_MAX_TERMS", "LIQUID", "TOLERANCE", "MARGIN_DECADES"]
 
-MAX_TERMS = 20
+FREE_MAX_TERMS = 20
+SAME = 2.0            # a swing within this factor of one of the full fit's is that extremum, not ripple
+ROUNDOFF = 1e-9       # decades: swings of log10 E'' below this are rounding, not extrema
+LIQUID = 1e-3         # E0 below this share of the storage modulus at the data's lowest frequency: a liquid
 TOLERANCE = 1.5
 MARGIN_DECADES = 0.5
-MAX_EXTREMA = 3
 SAMPLES_PER_DECADE = 10
 ROBUST = 0.03         # decades, as fitting.calibration.ROBUST
 DATA_FIT = dict(robust=ROBUST, weights=(4.0, 1.0))   # fits to DMA points: storage 4:1 (docs/fem_export.md)
@@ -84,9 +89,10 @@ class Series:
 class Choice:
     """What :func:`choose` kept: ``series``; ``met``: it meets the criterion (accurate and
     smooth); ``accurate``: it holds the accuracy; ``errors`` (its accuracy, same keys as
-    ``reference``: the full fit's errors on the data), ``extrema`` (loss modulus over the
-    window), ``basis`` ('data': errors on the DMA points, or 'full fit': deviations from it),
-    ``tried``: rows (terms, errors, extrema) of each count tried."""
+    ``reference``: the full fit's errors on the data), ``extrema`` (local extrema of its loss
+    modulus over the window, every one counted), ``ripple`` (:func:`ripple_of`, decades) and
+    ``scatter`` (:func:`scatter`, decades) it was held to, ``basis`` ('data': errors on the DMA points, or 'full fit': deviations from it),
+    ``tried``: rows (terms, errors, ripple) of each count tried."""
 
     series: Series
     met: bool
@@ -96,6 +102,8 @@ class Choice:
     extrema: int
     basis: str
     tried: tuple
+    ripple: float = 0.0
+    scatter: float = 0.0
 
 
 def _cauchy(r, c):
@@ -134,6 +142,16 @@ def _samples(window, per_decade=SAMPLES_PER_DECADE):
     return 10.0 ** np.linspace(lo, hi, max(int(math.ceil((hi - lo) * per_decade)) + 1, 40))
 
 
+def is_liquid(series: Series, omega_min: float) -> bool:
+    """Whether ``series`` has no equilibrium modulus the data could see: E0 is at most
+    ``LIQUID`` (0.1 %) of its storage modulus at ``omega_min`` (rad/s, reduced), the lowest
+    frequency of the data, far below any measurement's resolution there. A melt's smooth fit
+    keeps E0 near its floor (1e-9 of the glassy modulus); a cross-linked solid's E0 is nearly
+    all of the storage modulus at the lowest frequencies."""
+    storage = float(_moduli(series, np.array([float(omega_min)]))[0][0])
+    return float(series.E0) <= LIQUID * storage
+
+
 def deviation(series: Series, full: Series, window) -> dict:
     """|log10(series / full)| of storage and loss over ``window`` (rad/s): median and max."""
     w = _samples(window)
@@ -156,7 +174,8 @@ def _kernel(kind, x, tau):
 
 
 def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, target=None,
-              robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100, times=None) -> Series:
+              robust: float = ROBUST, weights=(1.0, 1.0), max_iter: int = 100, times=None,
+              long_term: bool = True) -> Series:
     """The ``n``-term series (plus a long-term modulus E0) closest in log modulus to
     ``target``: the DMA points under the material's shift law, (omega, storage, loss) (reduced
     rad/s, Pa) or ('time', t, E) (reduced s, Pa); without it ``full``'s storage and loss over
@@ -165,7 +184,8 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
     scale (decades) of the Cauchy loss on the data's residuals (0: least squares), as the
     calibration's (a few inconsistent points do not bend the series); ``weights``: of the
     storage and loss residuals. ``times``: the ``n`` starting relaxation times (s), default
-    log-spaced from 1/omega_max to 1/omega_min."""
+    log-spaced from 1/omega_max to 1/omega_min. ``long_term`` False: E0 = 0 (a liquid: no
+    equilibrium modulus), not fitted."""
     if not (isinstance(n, int) and n >= 1):
         raise ValueError(f"n (terms) must be an integer >= 1, got {n!r}")
     if times is not None and not (np.shape(times) == (n,) and np.all(np.asarray(times, float) > 0)):
@@ -212,8 +232,17 @@ def fit_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, targ
         Jb = np.hstack([np.zeros((n, n + 1)), np.diag(pen * (above.astype(float) - below.astype(float)))])
         return np.concatenate([r, bound]), np.vstack([J, Jb]), None
 
+    if not long_term:           # E0 = exp(-inf) = 0, held: the other parameters are fitted
+        full_x = resid_jac
+
+        def resid_jac(y):
+            r, J, _ = full_x(np.concatenate([[-np.inf], y]))
+            return r, J[:, 1:], None
+        x = x[1:]
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):    # a wild trial step: its
         x, *_ = optim.levenberg_marquardt_host(resid_jac, x, max_iter=max_iter, ftol=1e-6)   # cost is inf, rejected
+    if not long_term:
+        x = np.concatenate([[-np.inf], x])
     order = np.argsort(x[n + 1:])
     return Series(float(math.exp(x[0]) * scale), np.exp(x[1:n + 1])[order] * scale, np.exp(x[n + 1:])[order])
 
@@ -253,31 +282,103 @@ def placement(full: Series, window, n: int, margin: float = MARGIN_DECADES) -> n
     return np.sort(10.0 ** -np.interp((np.arange(n) + 0.5) / n, cum / cum[-1], x))
 
 
-def placed_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES) -> Series:
+def placed_terms(full: Series, n: int, window, margin: float = MARGIN_DECADES, long_term: bool = True) -> Series:
     """``n`` terms at :func:`placement`'s times, moduli (and E0) by non-negative least squares
     on ``full``'s storage and loss over ``window`` (rad/s; relative residuals at
     ``2 * SAMPLES_PER_DECADE`` frequencies a decade). Fitted to the smooth full series rather
     than to the scattered points, so the series keeps its smoothness (a fit to the points
-    moves times and moduli to chase scatter and leaves bumps)."""
+    moves times and moduli to chase scatter and leaves bumps). ``long_term`` False: E0 = 0."""
     tau = placement(full, window, n, margin)
     w = _samples(window, 2 * SAMPLES_PER_DECADE)
     st, ls = _moduli(full, w)
     ps, pl, _, _ = _arms(w, tau)
     A = np.vstack([np.hstack([np.ones((len(w), 1)), ps]) / st[:, None],
                    np.hstack([np.zeros((len(w), 1)), pl]) / ls[:, None]])
+    if not long_term:
+        A = A[:, 1:]
     x, _ = optim.nnls(A, np.ones(A.shape[0]))
-    return Series(float(x[0]), x[1:], tau)
+    return Series(float(x[0]), x[1:], tau) if long_term else Series(0.0, x, tau)
+
+
+def _turns(y):
+    """The alternating local extrema of the sampled curve ``y`` (its first and last samples
+    included as ends), as an array of values: the zig-zag the swings are measured on."""
+    y = np.asarray(y, float)
+    d = np.sign(np.diff(y))
+    keep = np.flatnonzero(d != 0)
+    if keep.size == 0:
+        return y[:1]
+    d = d[keep]
+    idx = keep[1:][d[1:] != d[:-1]]            # a sample where the slope changes sign
+    return np.concatenate([y[:1], y[idx], y[-1:]])
+
+
+def _significant(turns, h):
+    """Local extrema of a zig-zag whose swing exceeds ``h``: a turn counts once the curve has
+    moved back from it by more than ``h`` (the usual zig-zag filter with threshold h)."""
+    count, hi, lo, trend = 0, turns[0], turns[0], 0
+    for v in turns[1:]:
+        if trend == 0:
+            hi, lo = max(hi, v), min(lo, v)
+            trend = 1 if v - lo > h else -1 if hi - v > h else 0
+            hi, lo = (v, v) if trend else (hi, lo)
+        elif trend > 0:
+            if v > hi:
+                hi = v
+            elif hi - v > h:          # a maximum confirmed
+                count, trend, lo = count + 1, -1, v
+        else:
+            if v < lo:
+                lo = v
+            elif v - lo > h:          # a minimum confirmed
+                count, trend, hi = count + 1, 1, v
+    return count
+
+
+def _log_loss(series: Series, window, per_decade=100):
+    lo, hi = (math.log10(v) for v in window)
+    w = 10.0 ** np.linspace(lo, hi, max(int(per_decade * (hi - lo)) + 1, 400))
+    return np.log10(_moduli(series, w)[1])
+
+
+def ripple_of(series: Series, full: Series, window) -> float:
+    """Ripple of ``series``' loss modulus over ``window`` (rad/s), decades of log10 E'': the
+    largest swing h at which the series has more local extrema with swings of h or more than
+    ``full`` has with swings of h / ``SAME`` or more (:func:`_significant`; an extremum the
+    full fit has, its swing changed by the fewer terms, is not an extra one), i.e. the largest
+    swing among the extrema the full fit does not have; 0 for a series with no extra extremum. The full fit's own extrema (the
+    glass transition's loss peak, or its own ripple of a few 1e-6 decades) are not ripple."""
+    a, b = _turns(_log_loss(series, window)), _turns(_log_loss(full, window))
+    cands = np.unique(np.concatenate([np.abs(np.diff(a)), np.abs(np.diff(b))]))
+    for h in cands[::-1]:                 # descending: the first swing that brings an extra extremum
+        if h < ROUNDOFF:
+            break
+        below = h * (1.0 - 1e-9)          # swings of h itself count
+        if _significant(a, below) > _significant(b, below / SAME):
+            return float(h)
+    return 0.0
+
+
+def scatter(errors: dict) -> float:
+    """Scatter of the data about the full fit (decades) from its errors on them: the median
+    |log10(E''_fit / E''_measured)| (``loss_median``), for relaxation data the one of E(t)."""
+    for k in ("loss_median", "relaxation_median"):
+        if k in errors:
+            return float(errors[k])
+    raise ValueError(f"errors carry no loss_median or relaxation_median to measure the scatter: {sorted(errors)}")
 
 
 def choose(full: Series, window, errors_of=None, reference=None, target=None, max_terms: int | None = None,
-           tolerance: float = TOLERANCE) -> Choice:
-    """The fewest terms that hold ``full``'s accuracy and are smooth (module docstring).
+           tolerance: float = TOLERANCE, long_term: bool = True) -> Choice:
+    """The fewest terms that hold ``full``'s accuracy and are smooth within the data's
+    scatter (module docstring).
 
     ``errors_of(series) -> dict`` gives a series' errors on the DMA data (keys
     ``storage_median``, ``loss_median`` or ``relaxation_median``); without it, ``reference``
     (the full fit's recorded errors on the data, same keys) bounds the deviation from the
-    full fit over ``window`` (rad/s). ``target``: the DMA points for the free-time candidate
-    (:func:`fit_terms`). ``max_terms``: a cap on the count (default: ``full``'s own count)."""
+    full fit over ``window`` (rad/s) and gives the scatter. ``target``: the DMA points for
+    the free-time candidate (:func:`fit_terms`). ``max_terms``: a cap on the count (default:
+    ``full``'s own count). ``long_term`` False: every series has E0 = 0 (a liquid)."""
     if errors_of is None and not reference:
         raise ValueError("choose needs the DMA data (errors_of) or the full fit's recorded errors (reference)")
     if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 1):
@@ -295,22 +396,23 @@ def choose(full: Series, window, errors_of=None, reference=None, target=None, ma
             keys = ["storage_median", "loss_median"]
         limit = {k: (tolerance - 1.0) * ref[k] for k in keys}
         measure = lambda s: deviation(s, full, window)  # noqa: E731
-    max_ext = max(MAX_EXTREMA, loss_extrema(full, *window))
+    noise = scatter(ref)
     cap = int(max_terms) if max_terms is not None else max(len(full.times), 1)
     fits = {}
 
     def run(n):
-        """(series, errors, extrema, worst error / limit) of the better candidate at n terms:
+        """(series, errors, ripple, worst error / limit) of the better candidate at n terms:
         smooth and accurate first, then accurate, then the smaller error."""
         if n not in fits:
-            cands = [placed_terms(full, n, window)]
-            if n <= MAX_TERMS:
-                cands.append(fit_terms(full, n, window, target=target, **(DATA_FIT if target is not None else {})))
+            cands = [placed_terms(full, n, window, long_term=long_term)]
+            if n <= FREE_MAX_TERMS:
+                cands.append(fit_terms(full, n, window, target=target, long_term=long_term,
+                                       **(DATA_FIT if target is not None else {})))
             rows = []
             for s in cands:
                 e = measure(s)
-                rows.append((s, e, loss_extrema(s, *window), max(e[k] / limit[k] for k in keys)))
-            fits[n] = min(rows, key=lambda r: (not (r[3] <= 1.0 and r[2] <= max_ext), r[3] > 1.0, r[3]))
+                rows.append((s, e, ripple_of(s, full, window), max(e[k] / limit[k] for k in keys)))
+            fits[n] = min(rows, key=lambda r: (not (r[3] <= 1.0 and r[2] < noise), r[3] > 1.0, r[3]))
         return fits[n]
 
     def smallest(ok):
@@ -330,11 +432,11 @@ def choose(full: Series, window, errors_of=None, reference=None, target=None, ma
         return hi
 
     accurate = lambda n: run(n)[3] <= 1.0  # noqa: E731
-    smooth = lambda n: accurate(n) and run(n)[2] <= max_ext  # noqa: E731
+    smooth = lambda n: accurate(n) and run(n)[2] < noise  # noqa: E731
     n = smallest(smooth)
     met = n is not None
     if not met:
         n = smallest(accurate) or cap
-    s, e, ext, _ = run(n)
+    s, e, rip, _ = run(n)
     tried = tuple((k, {q: v[1][q] for q in keys}, v[2]) for k, v in sorted(fits.items()))
-    return Choice(s, met, accurate(n), e, ref, ext, basis, tried)
+    return Choice(s, met, accurate(n), e, ref, loss_extrema(s, *window), basis, tried, rip, noise)

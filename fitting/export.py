@@ -88,7 +88,8 @@ from .evaluate import tensile_over_shear
 from . import files
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
-           "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points"]
+           "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points",
+           "deck_name", "isothermal_card", "verification_plan", "widest_window", "STRAIN"]
 
 FORMATS = ("abaqus", "ansys", "lsdyna", "comsol")
 # output unit system -> (Pa -> stress unit, stress name, energy name, kg/m^3 -> density unit, density name)
@@ -111,7 +112,10 @@ class FEMMaterial:
     files of the fit), ``errors`` (the fit's errors on them, median |log10(model/measured)|),
     ``window`` (reduced angular frequencies of the data at T_ref, rad/s, or None),
     ``to_data`` (factor from this shear series to the data's modulus), ``domain``
-    ('frequency' or 'time' data), ``note`` (how the series was obtained, its accuracy)."""
+    ('frequency' or 'time' data), ``note`` (how the series was obtained: its count, window,
+    ripple and accuracy), ``liquid`` (why G_inf = 0, when the data show no equilibrium modulus;
+    empty for a solid), ``iso_T`` (C: an isothermal card at that temperature, relaxation
+    times a_T(iso_T) tau_i and no shift law; None: the card at T_ref with its shift law)."""
 
     G_inf: float
     G: np.ndarray
@@ -127,6 +131,8 @@ class FEMMaterial:
     to_data: float = 1.0
     domain: str = "frequency"
     note: str = ""
+    liquid: str = ""
+    iso_T: float | None = None
 
     @property
     def G_g(self) -> float:
@@ -207,7 +213,9 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
     """
     if not isinstance(d, dict) or d.get("kind") != "prony":
         raise ValueError(f"{where}: not a vjax Prony material (kind must be 'prony')")
-    E0 = _positive("E0", d.get("E0", math.nan), where)
+    E0 = float(d.get("E0", math.nan))
+    if not (math.isfinite(E0) and E0 >= 0):
+        raise ValueError(f"{where}: E0 must be a finite number >= 0 (0: a liquid), got {d.get('E0')!r}")
     Ek = np.asarray(d.get("moduli", []), float)
     tau = np.asarray(d.get("times", []), float)
     if Ek.ndim != 1 or Ek.shape != tau.shape or not (np.all(Ek > 0) and np.all(tau > 0)
@@ -273,10 +281,18 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
     files = tuple(str(f) for f in (fit.get("files") or fit.get("inputs") or ()))
     window = fit.get("window_rad_s")
     window = (float(window[0]), float(window[1])) if window and len(window) == 2 else None
+    # no equilibrium modulus where the data could see one: written as G_inf = 0 (a liquid)
+    w_min = window[0] if window else 10.0 / float(tau.max())
+    liquid = ""
+    if compact.is_liquid(compact.Series(G_inf, G, tau), w_min):
+        liquid = (f"E_inf = 0: no equilibrium modulus (a liquid): the fit's E0 = {E0:.3g} Pa is below "
+                  f"{compact.LIQUID:.1%} of its storage modulus at the data's lowest reduced frequency "
+                  f"({w_min:.3g} rad/s), so the data show none; G_inf = 0 is written")
+        G_inf = 0.0
     return FEMMaterial(float(G_inf), G, tau, float(K), law, shift, T_ref, source=where, files=files,
                        errors={k: float(v) for k, v in errors.items() if isinstance(v, (int, float))},
                        window=window, to_data=to_data, domain=str(fit.get("domain", "frequency")),
-                       note=f"{len(G)} terms: the full fit")
+                       note=f"{len(G)} terms: the full fit", liquid=liquid)
 
 
 def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
@@ -340,13 +356,58 @@ def _pct(v) -> str:
     return f"{(10 ** v - 1) * 100:.1f}%"
 
 
+def _times(w) -> str:
+    """A reduced window (rad/s) as reduced times at T_ref: '1e-03..1e+05 s at T_ref'."""
+    return f"{1.0 / w[1]:.3g}..{1.0 / w[0]:.3g} s at T_ref"
+
+
+def _medians(ref: dict) -> dict:
+    """The full fit's median errors per modulus (storage, loss); relaxation data: E(t) for both."""
+    if "relaxation_median" in ref:
+        return {"storage_median": ref["relaxation_median"], "loss_median": ref["relaxation_median"]}
+    return {k: ref[k] for k in ("storage_median", "loss_median") if k in ref}
+
+
+def widest_window(full: compact.Series, n: int, window, reference: dict, long_term: bool = True):
+    """The widest window of whole decades of reduced time (s at T_ref) inside ``window``
+    (rad/s) over which ``n`` terms (:func:`fitting.compact.fit_terms`) stay within twice the
+    full fit's error: their median deviation from ``full`` there at most the full fit's median
+    error on the data (``reference``), storage and loss. Returns (t_min, t_max) or None.
+    Widths are bisected; at each, windows are tried from the middle of the data outwards."""
+    lim = _medians(reference)
+    lo, hi = math.floor(-math.log10(window[1])), math.ceil(-math.log10(window[0]))
+
+    def holds(a, b):
+        w = (10.0 ** -b, 10.0 ** -a)
+        d = compact.deviation(compact.fit_terms(full, n, w, long_term=long_term), full, w)
+        return all(d[k] <= v for k, v in lim.items())
+
+    def at(width):
+        starts = sorted(range(lo, hi - width + 1), key=lambda a: abs(a + width / 2 - (lo + hi) / 2))
+        return next(((a, a + width) for a in starts if holds(a, a + width)), None)
+
+    best, wlo, whi = None, 1, hi - lo
+    while wlo <= whi:                     # the largest width that holds somewhere
+        mid = (wlo + whi) // 2
+        got = at(mid)
+        if got:
+            best, wlo = got, mid + 1
+        else:
+            whi = mid - 1
+    return None if best is None else (10.0 ** best[0], 10.0 ** best[1])
+
+
 def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=None, messages=None) -> FEMMaterial:
-    """The series to write. ``terms``: 'compact' (default; :func:`fitting.compact.choose`: the
-    fewest terms that hold the full fit's accuracy and are smooth, at most ``max_terms`` if
-    given) or 'full' (all terms, refused above ``max_terms``).
+    """The series to write; its ``note`` states the count, the window, the ripple and the
+    accuracy. ``terms``: 'compact' (default; :func:`fitting.compact.choose`: the fewest terms
+    within 1.5x of the full fit's medians whose loss-modulus ripple stays below the data's
+    scatter, at most ``max_terms`` if given, the note saying what the cap costs) or 'full' (all
+    terms, refused above ``max_terms``).
     ``limit``: the code's card limit (:data:`CARD_LIMIT`, G_inf included): a series with more
     terms is refit to ``limit - 1`` decaying terms over ``window`` = (t_min, t_max) (s,
-    reduced time at T_ref; default the data's window), its accuracy there in the note.
+    reduced time at T_ref). Without ``window`` the data's window is used, and refused when
+    the refit there misses the data by more than twice the full fit's error: the message
+    names the widest window that ``limit - 1`` terms do hold (:func:`widest_window`).
     ``messages``: a list that gets one line per decision."""
     if terms not in ("compact", "full"):
         raise ValueError(f"terms must be 'compact' or 'full', got {terms!r}")
@@ -355,20 +416,29 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
     say = messages.append if messages is not None else (lambda s: None)
     data = data_points(m) if terms == "compact" or limit else None
     wdata, wsource = _window(m, data)
+    long_term = not m.liquid
+    ref = data[1](m.series) if data is not None else dict(m.errors)
+    noise = compact.scatter(ref) if _medians(ref) else None
+    noise_txt = (f"the data's scatter {noise:.4f} decades ({_pct(noise)}: the full fit's median "
+                 f"|log10(E''_fit/E''_measured)|" + ("" if data is not None else ", as recorded") + ")"
+                 if noise is not None else "the data's scatter (not recorded)")
     out = m
     if terms == "full":
         if max_terms is not None and len(m.G) > max_terms:
             raise ValueError(f"the material has {len(m.G)} Prony terms, more than --max-terms {max_terms}; drop "
                              f"--full-spectrum to write a compact refit of at most {max_terms} terms")
+        out = dataclasses.replace(m, note=f"{len(m.G)} terms: the full fit, over {_times(wdata)} ({wsource} "
+                                          f"window); ripple: none (the fit is the reference); accuracy: the full "
+                                          f"fit's (above)")
     else:
         cap = min(max_terms, len(m.G)) if max_terms else None
         if data is None and not m.errors and (max_terms is None or len(m.G) <= max_terms):
             say(f"{len(m.G)} terms kept as fitted (no DMA data or recorded errors to check a refit against)")
             return m if not limit else prepare(m, "full", None, window, limit, messages)
         if data is not None:
-            c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap)
+            c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap, long_term=long_term)
         elif m.errors:
-            c = compact.choose(m.series, wdata, reference=m.errors, max_terms=cap)
+            c = compact.choose(m.series, wdata, reference=m.errors, max_terms=cap, long_term=long_term)
         else:
             raise ValueError(f"{m.source}: neither the DMA files nor the fit's errors are available, so the compact "
                              "series cannot be checked against the fit's accuracy; give --full-spectrum, or keep "
@@ -378,14 +448,16 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                         for k in keys)
         what = ("median |log10(model/measured)| on the DMA data" if c.basis == "data"
                 else "median deviation from the full fit over the data window")
-        verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and is smooth" if c.met else
-                   f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but is NOT smooth (no series of at "
-                   f"most {cap} terms over {math.log10(wdata[1] / wdata[0]):.0f} decades is free of ripple; drop "
-                   f"--max-terms for the smooth series)"
-                   if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the best "
-                   f"of at most {cap or len(m.G)} terms)")
-        note = (f"compact: {len(c.series.times)} of {len(m.G)} terms ({what}: {acc}); it {verdict}; "
-                f"{c.extrema} loss-modulus extrema over the data window")
+        rip = f"ripple {c.ripple:.4f} decades ({_pct(c.ripple)}) vs {noise_txt}"
+        verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and its ripple is below the scatter"
+                   if c.met else
+                   f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but its ripple is NOT below the "
+                   f"scatter: that is what --max-terms {max_terms} costs (drop it for the smooth default)"
+                   if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the "
+                   f"best of at most {cap or len(m.G)} terms" + (f": that is what --max-terms {max_terms} costs"
+                                                                 if max_terms else "") + ")")
+        note = (f"compact: {len(c.series.times)} of {len(m.G)} terms over {_times(wdata)} ({wsource} window); "
+                f"{rip}; accuracy ({what}): {acc}; it {verdict}")
         out = m.with_series(c.series, note)
         say(note)
     if limit and len(out.G) > limit - 1:
@@ -396,20 +468,54 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
             if not (0 < t_min < t_max and math.isfinite(t_max)):
                 raise ValueError(f"--window must be t_min,t_max with 0 < t_min < t_max (s), got {window!r}")
             w, wtxt = (1.0 / t_max, 1.0 / t_min), f"the window {t_min:g} to {t_max:g} s"
-        s = compact.fit_terms(m.series, limit - 1, w)
+        s = compact.fit_terms(m.series, limit - 1, w, long_term=long_term)
         dev = compact.deviation(s, m.series, w)
-        note = (f"refit to {limit - 1} terms + G_inf ({limit} cards, the keyword's limit) over {wtxt} at T_ref "
-                f"(reduced angular frequency {w[0]:.3g} to {w[1]:.3g} rad/s); deviation from the full fit there: "
-                f"storage median {dev['storage_median']:.4f} ({_pct(dev['storage_median'])}), max "
-                f"{dev['storage_max']:.4f}; loss median {dev['loss_median']:.4f} ({_pct(dev['loss_median'])}), max "
-                f"{dev['loss_max']:.4f} decades")
-        if data is not None and window is None:       # (a narrower window leaves points outside it)
-            e = data[1](s)
+        rip = compact.ripple_of(s, m.series, w)
+        e = data[1](s) if data is not None and window is None else None   # (a narrower window leaves points out)
+        lim = _medians(ref)
+        if window is None and lim:
+            if e is not None:
+                got = _medians(e)
+                holds = all(got[k] <= 2.0 * v for k, v in lim.items())
+                how = "on the DMA data: " + ", ".join(f"{k.split('_')[0]} median {got[k]:.4f} against the full "
+                                                      f"fit's {v:.4f}" for k, v in lim.items())
+            else:
+                holds = all(dev[k] <= v for k, v in lim.items())
+                how = "deviation from the full fit: " + ", ".join(f"{k.split('_')[0]} median {dev[k]:.4f} against "
+                                                                  f"the full fit's error {v:.4f}" for k, v in lim.items())
+            if not holds:
+                best = widest_window(m.series, limit - 1, w, ref, long_term)
+                dec = [f"1e{round(math.log10(t))}" for t in best] if best else None
+                where = (f"the widest window {limit} cards do hold is {dec[0]}..{dec[1]} s at T_ref: give --window "
+                         f"{dec[0]},{dec[1]} (the reduced times the analysis will see), "
+                         if best else f"no window of a decade or more is held by {limit} cards; ")
+                raise ValueError(
+                    f"no card written for a code limited to {limit} term cards ({limit - 1} terms + G_inf): over the "
+                    f"data's window ({_times(w)}, {math.log10(w[1] / w[0]):.0f} decades) its best {limit - 1} terms "
+                    f"miss by more than twice the full fit's error ({how}); {where}or use a code without a term limit")
+        note = (f"refit to {limit - 1} terms + G_inf ({limit} cards, the keyword's limit) over {wtxt}: "
+                f"{_times(w)} (reduced angular frequency {w[0]:.3g} to {w[1]:.3g} rad/s); ripple {rip:.4f} decades "
+                f"({_pct(rip)}) vs {noise_txt}; accuracy, deviation from the full fit there: storage median "
+                f"{dev['storage_median']:.4f} ({_pct(dev['storage_median'])}), max {dev['storage_max']:.4f}; loss "
+                f"median {dev['loss_median']:.4f} ({_pct(dev['loss_median'])}), max {dev['loss_max']:.4f} decades")
+        if e is not None:
             note += "; on the DMA data " + ", ".join(f"{k.split('_')[0]} median {e[k]:.4f}" for k in
                                                     ("storage_median", "loss_median", "relaxation_median") if k in e)
         out = m.with_series(s, note)
         say(note)
     return out
+
+
+def isothermal_card(m: FEMMaterial, T) -> FEMMaterial:
+    """``m`` at the one temperature ``T`` (C): relaxation times a_T(T) tau_i, no shift law
+    (every code reads it the same way; what a single-temperature analysis needs)."""
+    T = float(T)
+    la = float(m.log10_aT(T))
+    if not math.isfinite(la):
+        raise ValueError(f"--isothermal {T:g} C: the shift law has no finite a_T there (log10 a_T = {la})")
+    return dataclasses.replace(m, tau=np.asarray(m.tau, float) * 10.0 ** la, iso_T=T,
+                               note=m.note + f"; isothermal at {T:g} C: relaxation times a_T tau_i with log10 a_T "
+                                             f"= {la:.6g}")
 
 
 # ---- rendering ----------------------------------------------------------------------------
@@ -462,10 +568,20 @@ class _Units:
             f"units: stress {self.stress}, time s, temperature {self.T_unit}, density {self.rho_unit}"
             + (f", energy {self.energy}" if m.law == "Arrhenius" else "") + f"; {rho}",
             f"shift law {law}; vjax: log10 a_T = -C1 (T - T_ref)/(C2 + T - T_ref), a_T > 1 below T_ref"
-            if m.law == "WLF" else f"shift law {law}; vjax: ln a_T = Ea/R (1/T - 1/T_ref), T in K",
-            "check (e.g. a one-element relaxation test): " + ", ".join(
+            if m.law == "WLF" else f"shift law {law}; vjax: ln a_T = Ea/R (1/T - 1/T_ref), T in K"]
+        if m.iso_T is not None:
+            lines[-1] = "the fit's " + lines[-1] + " (it set the times below; it is NOT in this card)"
+        if m.iso_T is None:
+            lines.append("check (e.g. the one-element verification deck written beside this card): " + ", ".join(
                 f"log10 a_T at {self.T(T):g} {self.T_unit} = {float(m.log10_aT(T)):.6g}" for T in (m.T_ref - 20, m.T_ref + 20)
-                if m.law != "WLF" or m.shift["C2"] > 20),
+                if m.law != "WLF" or m.shift["C2"] > 20))
+        else:
+            lines.append(f"ISOTHERMAL card at T = {self.T(m.iso_T):g} {self.T_unit}: relaxation times a_T(T) tau_i "
+                         f"(log10 a_T = {float(m.log10_aT(m.iso_T)):.6g}), no shift fields: valid at this temperature "
+                         "only")
+        if m.liquid:
+            lines.append(m.liquid + " (a code that wants sum g_i < 1 needs a small G_inf instead)")
+        lines += [
             f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, "
             f"G_g = {_num(self.p(m.G_g))}; elastic bulk K = {_num(self.p(m.K))}",
             fields]
@@ -481,10 +597,11 @@ def abaqus_name(name: str) -> str:
 
 def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
     g = m.G / m.G_g
-    fields = ("*VISCOELASTIC g_i = G_i/G_g, k_i = 0, tau_i; *TRS " + ("th0, C1, C2 (log10 A = a_T)" if m.law == "WLF"
-                                                                       else "th0, Ea (ln A = ln a_T)"))
+    fields = ("*VISCOELASTIC g_i = G_i/G_g, k_i = 0, tau_i; " + (
+        "no *TRS (isothermal)" if m.iso_T is not None else
+        "*TRS th0, C1, C2 (log10 A = a_T)" if m.law == "WLF" else "*TRS th0, Ea (ln A = ln a_T)"))
     lines = [u.header(m, "**", "Abaqus", fields)]
-    if m.law == "Arrhenius":
+    if m.law == "Arrhenius" and m.iso_T is None:
         lines += ["** Arrhenius: Abaqus takes R and absolute zero from *PHYSICAL CONSTANTS (model data, one per model).",
                   f"** This card assumes the universal gas constant R = {_num(GAS_CONSTANT * u.energy_scale)} "
                   f"{u.energy.replace('/mol', '/(mol K)')} (units {u.name}) and ABSOLUTE ZERO = "
@@ -498,7 +615,9 @@ def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
               f"** {_num(u.p(m.G_g) / 2)}, {_num(2.0 / u.p(m.K))}",
               "*VISCOELASTIC, TIME=PRONY"]
     lines += [f"{_num(gi)}, 0., {_num(ti)}" for gi, ti in zip(g, m.tau)]
-    if m.law == "WLF":
+    if m.iso_T is not None:
+        pass                         # isothermal: no *TRS
+    elif m.law == "WLF":
         lines += ["*TRS, DEFINITION=WLF", f"{_num(u.T(m.T_ref))}, {_num(m.shift['C1'])}, {_num(m.shift['C2'])}"]
     else:
         zero = 0.0 if u.T_unit == "K" else -KELVIN
@@ -511,8 +630,9 @@ def _abaqus(m: FEMMaterial, u: _Units, name: str) -> str:
 
 def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     a = m.G / m.G_g
-    fields = "TB,PRONY SHEAR a_i = G_i/G_g, tau_i; TB,SHIFT " + ("WLF Tr, C1, C2" if m.law == "WLF"
-                                                                 else "TN Tr, H/R = Ea/R")
+    fields = "TB,PRONY SHEAR a_i = G_i/G_g, tau_i; " + ("no TB,SHIFT (isothermal)" if m.iso_T is not None else
+                                                          "TB,SHIFT WLF Tr, C1, C2" if m.law == "WLF"
+                                                          else "TB,SHIFT TN Tr, H/R = Ea/R")
     lines = [u.header(m, "!", "ANSYS", fields), f"MP,EX,{mat_id},{_num(u.p(m.E_g))}", f"MP,NUXY,{mat_id},{_num(m.nu_g)}"]
     if u.density is not None:
         lines.append(f"MP,DENS,{mat_id},{_num(u.rho())}")
@@ -520,6 +640,8 @@ def _ansys(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     pairs = [v for ai, ti in zip(a, m.tau) for v in (ai, ti)]
     for i in range(0, len(pairs), 6):
         lines.append(f"TBDATA,{i + 1}," + ",".join(_num(v) for v in pairs[i:i + 6]))
+    if m.iso_T is not None:
+        return "\n".join(lines) + "\n"
     if u.T_unit == "C":
         lines.append(f"TOFFST,{_num(KELVIN)}")
     if m.law == "WLF":
@@ -562,10 +684,16 @@ def _lsdyna(m: FEMMaterial, u: _Units, mat_id: int = 1) -> str:
     if len(m.G) + 1 > CARD_LIMIT["lsdyna"]:
         raise ValueError(f"LS-DYNA reads at most {CARD_LIMIT['lsdyna']} GI/BETAI cards, G_inf included; the series "
                          f"has {len(m.G)} terms + G_inf (export prepares a refit of {CARD_LIMIT['lsdyna'] - 1})")
-    TREF, A, B = lsdyna_shift(m, u.T_unit)
-    shift = ("A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T), B = C2"
-             if m.law == "WLF"
-             else "B = 0: Phi = exp(-A (1/T - 1/TREF)) = 1/a_T, T in K: A = Ea/R, TREF in K")
+    if m.iso_T is not None:          # A = B = 0: Phi = 1 at every temperature
+        TREF, A, B = u.T(m.iso_T), 0.0, 0.0
+        if TREF <= 0:
+            raise ValueError(f"LS-DYNA wants TREF > 0: --isothermal {TREF:g} C; use --temperature K")
+        shift = "isothermal: A = B = 0, so Phi = 1 (no shift); TREF = the card's temperature"
+    else:
+        TREF, A, B = lsdyna_shift(m, u.T_unit)
+        shift = ("A = -C1 ln 10 is negative on purpose (Phi = exp(-A (T-TREF)/(B+T-TREF)) = 1/a_T), B = C2"
+                 if m.law == "WLF"
+                 else "B = 0: Phi = exp(-A (1/T - 1/TREF)) = 1/a_T, T in K: A = Ea/R, TREF in K")
     lines = ["*KEYWORD", u.header(m, "$", "LS-DYNA", "reduced time t' = int Phi dt, " + shift),
              "*MAT_GENERAL_VISCOELASTIC +",
              "$ MID, RO, BULK, PCF, EF, TREF, A, B",
@@ -584,8 +712,13 @@ def _comsol(m: FEMMaterial, u: _Units):
     P = f"[{u.stress}]"
     fields = "parameters with their units in brackets; branch file: branch, G_i [Pa], tau_i [s] (always SI)"
     head = u.header(m, "%", "COMSOL", fields)
-    lines = [head, f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
-    if m.law == "WLF":
+    if m.iso_T is not None:
+        lines = [head, f'T_iso {_num(u.T(m.iso_T))}{T} "the one temperature of this isothermal card (no shift function)"']
+    else:
+        lines = [head, f'T_ref {_num(u.T(m.T_ref))}{T} "reference temperature of the shift function"']
+    if m.iso_T is not None:
+        pass
+    elif m.law == "WLF":
         lines += [f'C1 {_num(m.shift["C1"])} "WLF constant C1 (log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref))"',
                   f'C2 {_num(m.shift["C2"])}[K] "WLF constant C2"']
     else:
@@ -605,6 +738,138 @@ def _comsol(m: FEMMaterial, u: _Units):
                 "the numbers in the model's unit system); at T_ref, shift law and bulk modulus in the parameter file\n"
                 + "".join(f"{i} {_num(gi)} {_num(ti)}\n" for i, (gi, ti) in enumerate(zip(m.G, m.tau), 1)))
     return params, branches
+
+
+# ---- verification decks: one element at a step strain, at T_ref and one other temperature --
+STRAIN = 0.01          # engineering shear strain of the verification decks' step
+RAMP = 1e-2            # the step's rise time, as a share of the first expected time (curves start 100 rises in)
+
+
+def verification_plan(m: FEMMaterial):
+    """What the verification decks run and expect, for the card of ``m`` (T_ref, shift law):
+    temperatures (T_ref, T2) in C, T2 the whole degree above T_ref nearest to log10 a_T = -2
+    (relaxation 100 times faster, inside the same time axis); the shear strain ``STRAIN`` held
+    after a linear rise of ``t_rise`` (s); and ``times`` (s, 5 a decade from 100 rises to 10
+    times the longest a_T tau_i): the expected shear stress at T is STRAIN G(t / a_T(T)) (Pa),
+    the ideal step response, which the ramp approaches within 0.5 % from 100 rise times on.
+    Returns a dict with T, aT, t_rise, t_end, times, stress (2 x len(times), Pa)."""
+    if m.iso_T is not None:
+        raise ValueError("verification decks check the shift law: an isothermal card has none")
+    if m.law == "WLF":
+        C1, C2 = m.shift["C1"], m.shift["C2"]
+        d = 2.0 * C2 / (C1 - 2.0) if C1 > 2.0 else 20.0
+    else:
+        Tk = m.T_ref + KELVIN
+        d = 1.0 / (1.0 / Tk - 2.0 * LN10 * GAS_CONSTANT / m.shift["Ea"]) - Tk if m.shift["Ea"] > 2 * LN10 * GAS_CONSTANT * Tk else 20.0
+    T2 = m.T_ref + max(1.0, float(round(d)))
+    T = (m.T_ref, T2)
+    aT = tuple(10.0 ** float(m.log10_aT(t)) for t in T)
+    t_lo = 0.1 * float(np.min(m.tau)) * min(aT)
+    t_end = 10.0 * float(np.max(m.tau)) * max(aT)
+    n = int(math.ceil(5 * math.log10(t_end / t_lo))) + 1
+    times = np.logspace(math.log10(t_lo), math.log10(t_end), n)
+    G = m.series
+    stress = np.array([STRAIN * (G.E0 + np.exp(-np.outer(times / a, 1.0 / G.times)) @ G.moduli) for a in aT])
+    return {"T": T, "aT": aT, "t_rise": RAMP * t_lo, "t_end": t_end, "times": times, "stress": stress}
+
+
+# one unit cube per temperature: nodes 1-4 at z = 0, 5-8 at z = 1 (the second cube 10 further
+# in node numbers and 2 in x); simple shear u_x = gamma z, all other motion held: sigma_xz = G gamma
+_CUBE = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+
+
+def _nodes(k):
+    return [(10 * k + i + 1, x + 2.0 * k, y, z) for i, (x, y, z) in enumerate(_CUBE)]
+
+
+def _lsdyna_deck(m: FEMMaterial, u: _Units, card: str) -> str:
+    p = verification_plan(m)
+    T = [u.T(t) for t in p["T"]]
+    tr, te = p["t_rise"], p["t_end"]
+    g = lambda *v: ", ".join(_num(x) if not isinstance(x, int) else str(x) for x in v)  # noqa: E731
+    lines = ["*KEYWORD",
+             f"$ vjax {_version()}: one-element verification of {card} (LS-DYNA *MAT_GENERAL_VISCOELASTIC)",
+             f"$ Two unit cubes (one solid element each), each held at one temperature: element 1 at T_ref = {T[0]:g}"
+             f" {u.T_unit}, element 2 at {T[1]:g} {u.T_unit} (log10 a_T = {math.log10(p['aT'][1]):.6g} by the fit).",
+             f"$ Simple shear u_x = {STRAIN:g} z, raised linearly over {tr:.6g} s and held to {te:.6g} s; all other "
+             "motion held, so sigma_zx = G(t/a_T) * gamma.",
+             "$ Expected sigma_zx (curves 101: element 1, 102: element 2; stress in the card's unit, time s) is",
+             "$ the fitted material's: STRAIN * G(t / a_T(T)). Compare with the elements' zx stress (elout): a",
+             "$ curve 102 that relaxes 100 times SLOWER than 101 instead of faster means the sign of A is read",
+             "$ the other way; a factor ln 10 off in the shift means the base. Run implicit (static) as written.",
+             "*TITLE", f"vjax verification of {card}",
+             "*INCLUDE", card,
+             "*CONTROL_TERMINATION", "$ ENDTIM", g(te),
+             "*CONTROL_IMPLICIT_GENERAL", "$ IMFLAG, DT0", g(1, tr / 10),
+             "*CONTROL_IMPLICIT_AUTO", "$ IAUTO, ITEOPT, ITEWIN, DTMIN, DTMAX (< 0: curve 2, about t/10)",
+             g(1, 11, 5, tr / 1000, -2),
+             "*DATABASE_ELOUT", "$ DT, BINARY, LCUR (curve 3: an output about every t/20)", g(te / 20, 1, 3),
+             "*DATABASE_HISTORY_SOLID", "$ element ids", g(1, 2),
+             "*SECTION_SOLID", "$ SECID, ELFORM (1: constant stress)", g(1, 1),
+             "*PART", "vjax verification element", "$ PID, SECID, MID (the card's MID)", g(1, 1, 1),
+             "*NODE", "$ NID, X, Y, Z"]
+    lines += [g(n, float(x), float(y), float(z)) for k in (0, 1) for n, x, y, z in _nodes(k)]
+    lines += ["*ELEMENT_SOLID", "$ EID, PID, N1..N8"]
+    lines += [g(k + 1, 1, *[n for n, *_ in _nodes(k)]) for k in (0, 1)]
+    lines += ["*LOAD_THERMAL_CONSTANT_NODE", "$ NID, T, TE"]
+    lines += [g(n, T[k], 0.0) for k in (0, 1) for n, *_ in _nodes(k)]
+    lines += ["*BOUNDARY_SPC_NODE", "$ NID, CID, DOFX, DOFY, DOFZ, DOFRX, DOFRY, DOFRZ"]
+    lines += [g(n, 0, int(z == 0), 1, 1, 0, 0, 0) for k in (0, 1) for n, x, y, z in _nodes(k)]
+    lines += ["*BOUNDARY_PRESCRIBED_MOTION_NODE", "$ NID, DOF, VAD (2: displacement), LCID, SF (= gamma at z = 1)"]
+    lines += [g(n, 1, 2, 1, STRAIN) for k in (0, 1) for n, x, y, z in _nodes(k) if z == 1]
+    curve = lambda lcid, title, pts: (["*DEFINE_CURVE_TITLE", title, "$ LCID, SIDR, SFA, SFO", g(lcid, 0, 1.0, 1.0)]  # noqa: E731
+                                      + [g(a, o) for a, o in pts])
+    lines += curve(1, "step: linear rise, then held", [(0.0, 0.0), (tr, 1.0), (te, 1.0)])
+    lines += curve(2, "largest implicit time step (s) against time", [(0.0, tr / 10), (te, te / 10)])
+    lines += curve(3, "output interval (s) against time", [(0.0, tr / 10), (te, te / 20)])
+    for k in (0, 1):
+        lines += curve(101 + k, f"expected sigma_zx ({u.stress}) of element {k + 1} at {T[k]:g} {u.T_unit}",
+                       [(t, u.p(sv)) for t, sv in zip(p["times"], p["stress"][k])])
+    lines.append("*END")
+    return "\n".join(lines) + "\n"
+
+
+def _ansys_deck(m: FEMMaterial, u: _Units, card: str) -> str:
+    p = verification_plan(m)
+    T = [u.T(t) for t in p["T"]]
+    tr, te = p["t_rise"], p["t_end"]
+    stem = os.path.splitext(card)[0]
+    # load steps: the rise (10 substeps), then one a decade to t_end (5 substeps each)
+    ends = [tr] + [10.0 ** k for k in range(math.floor(math.log10(tr)) + 1, math.ceil(math.log10(te)))] + [te]
+    lines = [f"! vjax {_version()}: one-element verification of {card} (ANSYS Mechanical APDL)",
+             f"! Two unit cubes (SOLID185, one element each): element 1 at T_ref = {T[0]:g} {u.T_unit}, element 2 at "
+             f"{T[1]:g} {u.T_unit} (log10 a_T = {math.log10(p['aT'][1]):.6g} by the fit).",
+             f"! Simple shear UX = {STRAIN:g} z, raised over {tr:.6g} s and held to {te:.6g} s, all other motion held: "
+             "SXZ = G(t/a_T) * gamma.",
+             f"! The computed SXZ of both elements is written by *VWRITE to {stem}_verify_computed.txt (time, element",
+             "! 1, element 2); compare with the EXPECTED table below (the fitted material's STRAIN * G(t / a_T(T)),",
+             f"! stress in {u.stress}). Element 2 relaxing 100 times SLOWER than element 1 instead of faster means",
+             "! the shift is read the other way; a factor ln 10 off means its base.",
+             "FINISH", "/CLEAR,NOSTART", "/PREP7", f"/INPUT,'{stem}','{os.path.splitext(card)[1][1:]}'",
+             "ET,1,SOLID185", "MAT,1", "TYPE,1"]
+    lines += [f"N,{n},{_num(x)},{_num(y)},{_num(z)}" for k in (0, 1) for n, x, y, z in _nodes(k)]
+    lines += ["E," + ",".join(str(n) for n, *_ in _nodes(k)) for k in (0, 1)]
+    lines += [f"BF,{n},TEMP,{_num(T[k])}" for k in (0, 1) for n, *_ in _nodes(k)]
+    lines += ["FINISH", "/SOLU", "ANTYPE,STATIC", "NLGEOM,OFF", "OUTRES,ALL,ALL"]
+    lines += [f"D,{n},UY,0" for k in (0, 1) for n, *_ in _nodes(k)]
+    lines += [f"D,{n},UZ,0" for k in (0, 1) for n, *_ in _nodes(k)]
+    lines += [f"D,{n},UX,{_num(STRAIN * z)}" for k in (0, 1) for n, x, y, z in _nodes(k)]
+    nsets = 0
+    for i, t in enumerate(ends):
+        sub = 10 if i == 0 else 5
+        nsets += sub
+        lines += [f"TIME,{_num(t)}", f"NSUBST,{sub},{sub},{sub}", "KBC,0" if i == 0 else "KBC,1", "SOLVE"]
+    lines += ["FINISH", "/POST26", "NUMVAR,10", "ESOL,2,1,5,S,XZ,SXZ_1", "ESOL,3,2,15,S,XZ,SXZ_2",
+              f"*DIM,RES,ARRAY,{nsets},3", "VGET,RES(1,1),1", "VGET,RES(1,2),2", "VGET,RES(1,3),3",
+              f"*CFOPEN,{stem}_verify_computed,txt", "*VWRITE,RES(1,1),RES(1,2),RES(1,3)", "(3E20.10)",
+              "*CFCLOS", "FINISH",
+              f"! EXPECTED: time (s), SXZ of element 1 at {T[0]:g} {u.T_unit}, SXZ of element 2 at {T[1]:g} "
+              f"{u.T_unit} ({u.stress})"]
+    lines += [f"! {t:.10e} {u.p(a):.10e} {u.p(b):.10e}" for t, a, b in zip(p["times"], *p["stress"])]
+    return "\n".join(lines) + "\n"
+
+
+DECKS = {"lsdyna": _lsdyna_deck, "ansys": _ansys_deck}
 
 
 def render(m: FEMMaterial, fmt: str, units: str = "SI", temperature: str | None = None, name: str = "VJAX",
@@ -635,15 +900,22 @@ def parse_formats(text) -> list:
     return list(dict.fromkeys(names))
 
 
-def file_name(stem: str, fmt: str, temperature: str) -> tuple:
+def file_name(stem: str, fmt: str, temperature: str, isothermal=None) -> tuple:
     """The file names of one format: ``<stem>_<code>_<K|degC><extension>`` (COMSOL: the
-    parameter and the branch file)."""
+    parameter and the branch file); an isothermal card adds ``_iso<T>`` (T in the file's
+    scale)."""
     ext = EXTENSION[fmt] if isinstance(EXTENSION[fmt], tuple) else (EXTENSION[fmt],)
-    return tuple(f"{stem}_{fmt}_{TEMPERATURES[temperature]}{e}" for e in ext)
+    iso = "" if isothermal is None else f"_iso{float(isothermal):g}"
+    return tuple(f"{stem}_{fmt}_{TEMPERATURES[temperature]}{iso}{e}" for e in ext)
+
+
+def deck_name(stem: str, fmt: str, temperature: str) -> str:
+    """The verification deck written beside a card: ``<stem>_<code>_<K|degC>_verify<ext>``."""
+    return f"{stem}_{fmt}_{TEMPERATURES[temperature]}_verify{EXTENSION[fmt]}"
 
 
 def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None, max_terms=None, *, density=None,
-           terms="compact", window=None, messages=None) -> list:
+           terms="compact", window=None, messages=None, isothermal=None) -> list:
     """Write the files of ``formats`` (names of :data:`FORMATS`) as
     ``<out_dir>/<stem>_<code>_<K|degC>...`` atomically; every file is rendered before the
     first is written, so a refused format leaves nothing behind. Returns the paths.
@@ -651,11 +923,21 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
     ``temperature``: 'K' or 'C', required (the scale of every temperature in the files).
     ``density``: kg/m^3 (LS-DYNA refuses without it). ``terms``, ``max_terms``, ``window``
     ((t_min, t_max) s at T_ref, for codes with a card limit): see :func:`prepare`.
+    ``isothermal``: a temperature in the files' scale: every card at that one temperature
+    (relaxation times a_T tau_i, no shift fields; :func:`isothermal`), named ``..._iso<T>``.
+    Otherwise LS-DYNA and ANSYS also get a one-element verification deck beside the card
+    (:func:`deck_name`; :func:`verification_plan`).
     ``messages``: a list that gets the choices made (term counts, refits, accuracy)."""
     u = _Units(units, temperature, density)          # refuse a missing scale before any fitting
     if not os.path.isdir(out_dir):
         raise ValueError(f"output directory {out_dir!r} does not exist")
     fmts = parse_formats(formats)
+    T_iso = None
+    if isothermal is not None:
+        T_iso = float(isothermal) - (KELVIN if temperature == "K" else 0.0)
+        if not math.isfinite(T_iso) or T_iso <= -KELVIN:
+            raise ValueError(f"--isothermal must be a temperature above absolute zero, got {isothermal!r} "
+                             f"({temperature})")
     texts, base = [], None
     for fmt in fmts:
         if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
@@ -663,10 +945,15 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
         else:
             base = base or prepare(m, terms, max_terms, messages=messages)
             series = base
+        if T_iso is not None:
+            series = isothermal_card(series, T_iso)
         text = render(series, fmt, u.name, temperature, name=stem.upper().replace(" ", "_") or "VJAX",
                       density=density)
         parts = text if isinstance(text, tuple) else (text,)
-        texts += [(os.path.join(out_dir, n), t) for n, t in zip(file_name(stem, fmt, temperature), parts)]
+        names = file_name(stem, fmt, temperature, isothermal)
+        texts += [(os.path.join(out_dir, n), t) for n, t in zip(names, parts)]
+        if fmt in DECKS and T_iso is None:
+            texts.append((os.path.join(out_dir, deck_name(stem, fmt, temperature)), DECKS[fmt](series, u, names[0])))
     return [os.fspath(p) for p in files.write_all_atomic(texts)]
 
 
@@ -720,7 +1007,9 @@ def evaluate_card(path) -> Card:
         G0, K = E / tensile_over_shear(nu) * to_pa, E / (3 * (1 - 2 * nu)) * to_pa
         g, _, tau = np.array(blocks["*VISCOELASTIC,TIME=PRONY"]).T
         G = prony(G0 * (1 - g.sum()), G0 * g, tau)
-        if "*TRS,DEFINITION=WLF" in blocks:
+        if not any(k.startswith("*TRS") for k in blocks):        # isothermal: no shift
+            la = lambda T: np.zeros_like(np.asarray(T, float))  # noqa: E731
+        elif "*TRS,DEFINITION=WLF" in blocks:
             (th0, C1, C2), = blocks["*TRS,DEFINITION=WLF"]
             la = lambda T: -C1 * (Tfile(T) - th0) / (C2 + Tfile(T) - th0)  # noqa: E731
         else:
@@ -750,7 +1039,9 @@ def evaluate_card(path) -> Card:
         v = np.array([tables[("PRONY", "SHEAR")][i] for i in sorted(tables[("PRONY", "SHEAR")])])
         a, tau = v[0::2], v[1::2]
         G = prony(G0 * (1 - a.sum()), G0 * a, tau)
-        if ("SHIFT", "WLF") in tables:
+        if not any(k[0] == "SHIFT" for k in tables):              # isothermal: no shift
+            la = lambda T: np.zeros_like(np.asarray(T, float))  # noqa: E731
+        elif ("SHIFT", "WLF") in tables:
             s = tables[("SHIFT", "WLF")]
             la = lambda T: -s[2] * (Tfile(T) - s[1]) / (s[3] + Tfile(T) - s[1])  # noqa: E731
         else:
@@ -790,7 +1081,9 @@ def evaluate_card(path) -> Card:
         g = np.array([p[f"G_{i}"] for i in range(1, n + 1)])
         tau = np.array([p[f"tau_{i}"] for i in range(1, n + 1)])
         Tk = lambda T: np.asarray(T, float) + KELVIN  # noqa: E731
-        if "C1" in p:
+        if "C1" not in p and "Q" not in p:                        # isothermal: no shift
+            la = lambda T: np.zeros_like(np.asarray(T, float))  # noqa: E731
+        elif "C1" in p:
             la = lambda T: -p["C1"] * (Tk(T) - p["T_ref"]) / (p["C2"] + Tk(T) - p["T_ref"])  # noqa: E731
         else:
             la = lambda T: p["Q"] / GAS_CONSTANT * (1 / Tk(T) - 1 / p["T_ref"]) / LN10  # noqa: E731

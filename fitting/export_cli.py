@@ -5,11 +5,17 @@ The shear relaxation modulus G(t) = E(t) / (2 (1 + nu)) and an elastic bulk modu
 ``--nu`` < 0.5 or ``--bulk-modulus``) are written in each code's own normalization, with the
 WLF or Arrhenius shift law (see :mod:`fitting.export`). The series is compact by default: the
 fewest terms whose medians on the DMA data named in the JSON stay within 1.5x of the full
-fit's and whose loss modulus has at most 3 local extrema over the data (:mod:`fitting.compact`;
-``--max-terms N`` caps the count, e.g. 20: accurate, but the loss ripples and the output says
-so); ``--full-spectrum`` writes
-every term. LS-DYNA gets the best 5 terms + G_inf (its six cards) over ``--window`` (reduced
-times at T_ref, s; default the data's), the refit's accuracy printed and in the file.
+fit's and whose loss-modulus ripple stays below the data's scatter about the full fit
+(:mod:`fitting.compact`; ``--max-terms N`` caps the count and the output says what that
+costs); ``--full-spectrum`` writes every term. Every card's header states its term count,
+window, ripple and accuracy. ``--window T_MIN,T_MAX`` (reduced times at T_ref, s) is the
+working window of the analysis and the main lever for fewer terms: LS-DYNA gets the best 5
+terms + G_inf (its six cards) over it; without it LS-DYNA is refused when six cards cannot hold
+the data's window within twice the full fit's error, and the message names the widest window
+they do hold. ``--isothermal T`` writes every card at one temperature (times a_T(T) tau_i, no
+shift fields). Beside the LS-DYNA and ANSYS cards a one-element verification deck is written
+(``<stem>_<code>_<K|degC>_verify.k|.mac``): the element at a step shear strain at T_ref and a
+hotter temperature, with the stresses the fitted material predicts.
 ``--temperature K|C`` is required (it is in the file names too); ``--density`` (kg/m^3) is
 written for every code and required for LS-DYNA. Files: ``<stem>_<code>_<K|degC>.inp|.mac|.k``
 and ``<stem>_comsol_<K|degC>_parameters.txt`` / ``_branches.txt`` in ``--out-dir`` (default:
@@ -45,7 +51,14 @@ def add_arguments(p, fit: bool = False) -> None:
     g.add_argument("--full-spectrum", action="store_true",
                    help="write every Prony term of the fit instead of the compact series")
     g.add_argument("--window", default=None, metavar="T_MIN,T_MAX",
-                   help="reduced times (s, at T_ref) the LS-DYNA six-card refit must hold (default: the data's)")
+                   help="your working window: the reduced times (s, at T_ref) the analysis will see, the main lever "
+                        "for fewer terms. LS-DYNA (six cards) is refit over it; without it LS-DYNA is refused when "
+                        "six cards cannot hold the data's whole window, and the message names the widest window they "
+                        "do hold. Example (docs/fem_export.md): --window 1e-4,1e2")
+    g.add_argument("--isothermal", type=float, default=None, metavar="T",
+                   help="write every card at the one temperature T (in the --temperature scale): relaxation times "
+                        "a_T(T) tau_i, no shift fields (unambiguous in every code; what most single-temperature "
+                        "analyses need). Without it, LS-DYNA and ANSYS also get a one-element verification deck")
 
 
 def check_arguments(args, fit: bool = False):
@@ -97,7 +110,7 @@ def run(m, formats, out_dir, stem, args, max_terms=None) -> list:
     written = export.export(m, formats, out_dir, stem, units=args.units, temperature=args.temperature,
                             max_terms=max_terms, density=args.density,
                             terms="full" if args.full_spectrum else "compact", window=parse_window(args.window),
-                            messages=notes)
+                            messages=notes, isothermal=args.isothermal)
     for n in notes:
         print(n)
     return written
@@ -114,9 +127,10 @@ def _parser():
     p.add_argument("--out-dir", default=None, help="output directory (default: the JSON's)")
     p.add_argument("--stem", default=None, help="file name stem (default: the JSON's)")
     p.add_argument("--max-terms", type=int, default=None,
-                   help="at most this many Prony terms (default: as many as a smooth series holding the fit's accuracy "
-                        "needs; a smaller cap keeps the accuracy but the loss modulus ripples; with --full-spectrum "
-                        "a material with more terms is refused)")
+                   help="at most this many Prony terms. Default: the fewest within 1.5x of the full fit's medians "
+                        "whose loss-modulus ripple stays below the data's scatter about the fit; a smaller cap says "
+                        "what it costs (ripple above the scatter, or accuracy) in the output and the card. With "
+                        "--full-spectrum a material with more terms is refused")
     p.add_argument("--shift-law", choices=["WLF", "Arrhenius"], default=None,
                    help="export this closed-form alternative stored next to a table shift law")
     add_arguments(p)

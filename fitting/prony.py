@@ -307,7 +307,7 @@ def pad_size(n, step=8):
 
 def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robust: float = math.inf,
            weights=(1.0, 1.0), ftol: float = 1e-7, tau_margin: float = 1.0, pad_terms: int | None = None,
-           prune: float = 0.0) -> PronyFit:
+           prune: float = 0.0, fix_E0: bool = False) -> PronyFit:
     """End-to-end Levenberg-Marquardt refinement of E0, moduli, times and the shift law
     against the raw unshifted data (see the module docstring). Returns a :class:`PronyFit`
     with uncertainties from the Jacobian at the optimum.
@@ -318,7 +318,8 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     ``pad_terms``: pad the parameter vector to this many terms (default: the next multiple of
     8) so that refinements of similar size share one compilation. ``prune``: after the
     refinement, terms whose modulus is below ``prune`` x (E0 + sum E_k) are removed and the
-    rest refined again (0 disables)."""
+    rest refined again (0 disables). ``fix_E0``: hold E0 at its start (at least 1e-4 of the
+    smallest measured storage modulus): a liquid, whose data show no equilibrium modulus."""
     T_sets = table.temperatures
     T_ref = float(shift.T_ref)
     kind, p_law0, physical, sig, c2min = law_spec(shift, T_sets, T_ref, float(T_sets.min()))
@@ -335,7 +336,7 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
     plaw = np.zeros(nlp)
     plaw[:nl] = p_law0
     x0 = np.concatenate([[math.log(E0 / scale)], lEk, ltau, plaw])
-    active = np.concatenate([[1.0], np.arange(Kp) < K, np.arange(Kp) < K, np.arange(nlp) < nl]).astype(float)
+    active = np.concatenate([[0.0 if fix_E0 else 1.0], np.arange(Kp) < K, np.arange(Kp) < K, np.arange(nlp) < nl]).astype(float)
     # reduced-frequency range of the data under the starting shift law
     wr = np.asarray(table.omega) * 10.0 ** evaluate.log10_aT(shift, table.T)
     lt_lo = -math.log(wr.max()) - tau_margin * LN10
@@ -367,10 +368,14 @@ def refine(table: DMATable, material: Material, shift, max_iter: int = 300, robu
             active = act2
     n = 2 * len(table)
     on = np.flatnonzero(active > 0)
+    if fix_E0:          # E0 held: kept in x (x[0] is log E0 below), with no say in the covariance
+        on = np.concatenate([[0], on])
     r = np.asarray(sol.residual)[:n]
     J = np.asarray(sol.jacobian)[:n][:, on]
+    if fix_E0:
+        J[:, 0] = 0.0
     x = xa[on]
-    p = len(x)
+    p = len(x) - int(fix_E0)
     Kk = int(active[1:Kp + 1].sum())
     rss = float(np.sum(r ** 2))
     s2 = rss / max(n - p, 1)

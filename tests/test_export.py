@@ -436,44 +436,62 @@ def _data_errors(terms, nu, d, table):
 @pytest.fixture(scope="module")
 def shipped(tmp_path_factory):
     """vjax-fit on the shipped pyvisco example (its Eplexor .xls export), WLF, nu = 0.45, with
-    the default FEM export of every code (compact series; LS-DYNA's six cards)."""
+    the default FEM export of the codes without a term limit (compact series; LS-DYNA's six
+    cards cannot hold its 27 decades: see test_lsdyna_refused_without_window_names_one)."""
     out = tmp_path_factory.mktemp("shipped") / "pyvisco.json"
     code = fit_cli.main([SHIPPED, "--tref", "25", "--law", "WLF", "--out", str(out), "--nu", "0.45",
-                         "--export", "all", "--temperature", "C", "--density", "1200", "--no-plots", "--no-cache"])
+                         "--export", "abaqus,ansys,comsol", "--temperature", "C", "--density", "1200", "--no-plots",
+                         "--no-cache"])
     assert code == 0
     return out, json.loads(out.read_text()), dma.read([SHIPPED])
 
 
-def _loss_turns(terms, wr):
-    """Local extrema of the loss modulus of (G_inf, G_i, tau_i) over the reduced window of the
-    points wr (rad/s), on 8192 log-spaced frequencies."""
+def _loss_turns(terms, wr, swing=0.0):
+    """Local extrema of log10 of the loss modulus of (G_inf, G_i, tau_i) over the reduced
+    window of the points wr (rad/s), on 8192 log-spaced frequencies, counting only those whose
+    prominence (scipy.signal.find_peaks: the drop to the higher of the two lowest points that
+    separate it from a higher peak or the ends) exceeds ``swing`` decades."""
+    from scipy.signal import find_peaks
     w = np.logspace(np.log10(wr.min()), np.log10(wr.max()), 8192)
     z = w[:, None] * terms[2]
-    return int(np.sum(np.diff(np.sign(np.diff((z / (1 + z * z)) @ terms[1]))) != 0))
+    y = np.log10((z / (1 + z * z)) @ terms[1])
+    return sum(len(find_peaks(v, prominence=swing if swing > 0 else None)[0]) for v in (y, -y))
 
 
 def test_shipped_compact_series_keeps_the_fit_accuracy(shipped, tmp_path):
     """The default cards carry fewer terms than the fit, as accurate within 1.5x on the DMA
-    points and smooth (loss modulus with at most 3 local extrema over the data, counted
-    here); capped at 20 terms (--max-terms 20) they stay within 1.5x but ripple, and the
-    card says so. Times stay within the data's reduced-time window plus half a decade."""
+    points, and smooth within the data's scatter: extrema of the loss modulus whose prominence
+    exceeds the scatter of the data about the full fit (the full fit's median |log10| loss
+    error, computed here) are no more than the full fit's own. Capped at 20 terms
+    (--max-terms 20) the card holds the accuracy but ripples above the scatter, and the card
+    says so and what it costs. Times stay within the data's reduced-time window plus half a decade."""
     out, d, table = shipped
     assert len(d["times"]) > 50
-    (full_s, full_l), wr = _data_errors((d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"])),
-                                        0.45, d, table)
+    full = (d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"]))
+    (full_s, full_l), wr = _data_errors(full, 0.45, d, table)
     assert export_cli.main([str(out), "--format", "abaqus", "--nu", "0.45", "--temperature", "C", "--density",
                             "1200", "--max-terms", "20", "--out-dir", str(tmp_path)]) == 0
     cards = [(fmt, str(out.parent)) for fmt in ("abaqus", "ansys", "comsol")] + [("abaqus", str(tmp_path))]
+    own = _loss_turns(full, wr, full_l)
     for fmt, folder in cards:
         terms, _, rho, _ = read_back(fmt, folder, "pyvisco", "SI", "C")
         capped = folder == str(tmp_path)
         assert len(terms[1]) <= (20 if capped else len(d["times"]) // 2) and rho == 1200.0, fmt
         (es, el), _ = _data_errors(terms, 0.45, d, table)
         assert es <= 1.5 * full_s and el <= 1.5 * full_l, (fmt, es, full_s, el, full_l)
-        assert (_loss_turns(terms, wr) > 3) == capped, (fmt, folder, _loss_turns(terms, wr))
+        assert (_loss_turns(terms, wr, full_l) > own) == capped, (fmt, folder, _loss_turns(terms, wr, full_l), own)
         # relaxation times within the data's reduced-time window plus half a decade
         assert terms[2].min() >= 10 ** -0.5 / wr.max() and terms[2].max() <= 10 ** 0.5 / wr.min(), fmt
-    assert "is NOT smooth" in open(card_paths("abaqus", str(tmp_path), "pyvisco", "C")[0]).read()
+    capped_text = open(card_paths("abaqus", str(tmp_path), "pyvisco", "C")[0]).read()
+    assert "ripple is NOT below the scatter: that is what --max-terms 20 costs" in capped_text
+    # the header states count, window, ripple (against the scatter) and accuracy
+    head = open(card_paths("ansys", str(out.parent), "pyvisco", "C")[0]).read()
+    n = len(read_back("ansys", str(out.parent), "pyvisco", "SI", "C")[0][1])
+    said = re.search(r"compact: (\d+) of \d+ terms over (\S+)\.\.(\S+) s at T_ref .*ripple ([0-9.]+) decades .* "
+                     r"vs the data's scatter ([0-9.]+) decades", head)
+    assert said and int(said.group(1)) == n
+    assert float(said.group(2)) == pytest.approx(1 / wr.max(), rel=1e-2)
+    assert float(said.group(4)) < float(said.group(5)) == pytest.approx(full_l, abs=6e-5)
     head = open(card_paths("abaqus", str(out.parent), "pyvisco", "C")[0]).read()
     assert SHIPPED in head and f"vjax {version('vjax')}" in head
     assert f"storage {d['fit']['errors']['storage_median']:.4f}" in head
@@ -488,7 +506,8 @@ def test_shipped_fit_every_code_by_its_formula(shipped, tmp_path, law):
     out, d, _ = shipped
     shift = d["shift"] if law == "WLF" else dict(d["shift_alternatives"]["Arrhenius"], law="Arrhenius")
     assert export_cli.main([str(out), "--format", "all", "--nu", "0.45", "--temperature", "K", "--density", "1200",
-                            "--shift-law", law, "--full-spectrum", "--out-dir", str(tmp_path)]) == 0
+                            "--shift-law", law, "--full-spectrum", "--window", "1e-2,1e2",
+                            "--out-dir", str(tmp_path)]) == 0
     T = [-20.0, 25.0, 80.0]
     for fmt in ("abaqus", "ansys", "comsol"):
         _check(d, fmt, str(tmp_path), "pyvisco", "SI", 0.45, "K", rho=1200.0, law=shift, T=T)
@@ -498,37 +517,235 @@ def test_shipped_fit_every_code_by_its_formula(shipped, tmp_path, law):
     assert rho == 1200.0
 
 
-def test_shipped_lsdyna_six_cards_and_stated_accuracy(shipped, tmp_path):
-    """LS-DYNA gets the best 5 terms + G_inf over a window; the deviation from the full fit
-    its header states is the one measured here, and a narrower --window holds the fit better."""
-    out, d, _ = shipped
-    full = lambda t: (d["E0"] + np.sum(np.array(d["moduli"]) * np.exp(-np.asarray(t)[:, None] / d["times"]),
-                                       axis=1)) / 2.9
-    stated = []
-    for folder, window in ((str(out.parent), None), (str(tmp_path), "1e-4,1e2")):
-        if window:
-            assert export_cli.main([str(out), "--format", "lsdyna", "--nu", "0.45", "--temperature", "C",
-                                    "--density", "1200", "--window", window, "--out-dir", folder]) == 0
-        terms, _, rho, la = read_back("lsdyna", folder, "pyvisco", "SI", "C")
-        assert len(terms[1]) == 5 and rho == 1200.0
-        Gr, _, lar = _reference(d, 0.45)
-        np.testing.assert_allclose(la([-20.0, 25.0, 80.0]), lar([-20.0, 25.0, 80.0]), rtol=TOL, atol=TOL)
-        text = open(card_paths("lsdyna", folder, "pyvisco", "C")[0]).read()
-        lo, hi = (float(v) for v in re.search(r"reduced angular frequency (\S+) to (\S+) rad/s", text).groups())
-        w = np.logspace(np.log10(lo), np.log10(hi), 400)
-        G_inf, G, tau = terms
+def _full_dev(d, terms, w):
+    """Median |log10| deviation of storage and loss of a card's shear series from the JSON's
+    full fit (tensile / 2.9) at the angular frequencies w."""
+    def moduli(E0, Ek, tau):
         iwt = 1j * w[:, None] * tau
-        card = G_inf + np.sum(G * iwt / (1 + iwt), axis=1)
-        iwt = 1j * w[:, None] * np.array(d["times"])
-        ref = (d["E0"] + np.sum(np.array(d["moduli"]) * iwt / (1 + iwt), axis=1)) / 2.9
-        dev = np.median(np.abs(np.log10(card.real / ref.real)))
-        said = float(re.search(r"storage median ([0-9.]+)", text).group(1))
-        assert abs(said - dev) < 0.003, (said, dev)       # the header's 4 decimals, another sampling
-        stated.append(dev)
-        if window:
-            t = np.logspace(-4, 2, 50)
-            assert np.max(np.abs(np.log10(prony_G(terms)(t) / full(t)))) < 0.05
-    assert stated[1] < stated[0] / 3
+        return E0 + np.sum(Ek * iwt / (1 + iwt), axis=1)
+    card = moduli(*terms)
+    ref = moduli(d["E0"], np.array(d["moduli"]), np.array(d["times"])) / 2.9
+    return (float(np.median(np.abs(np.log10(card.real / ref.real)))),
+            float(np.median(np.abs(np.log10(card.imag / ref.imag)))))
+
+
+def test_lsdyna_refused_without_window_names_one(shipped, tmp_path, capsys):
+    """Six cards cannot hold the example's 27 decades: without --window no file is written, and
+    the message names the widest window six cards do hold. Checked here: the refit over the
+    data's window (asked for explicitly) misses the DMA points by more than twice the full
+    fit's error (computed here); over the named window the card stays within the full fit's
+    error of it (deviation computed here), and its header states that deviation; a narrower
+    --window holds the relaxation modulus within 5 %."""
+    out, d, table = shipped
+    args = [str(out), "--format", "lsdyna,abaqus", "--nu", "0.45", "--temperature", "C", "--density", "1200",
+            "--out-dir", str(tmp_path)]
+    assert export_cli.main(args) == 1
+    err = capsys.readouterr().err
+    assert not list(tmp_path.iterdir())                       # nothing written, not even the Abaqus card
+    lo, hi = re.search(r"the widest window 6 cards do hold is (1e-?\d+)\.\.(1e-?\d+) s at T_ref", err).groups()
+    assert f"--window {lo},{hi}" in err
+    full = (d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"]))
+    (fs, fl), wr = _data_errors(full, 0.45, d, table)
+    # the refusal is right: over the data's own window six cards miss by more than 2x
+    data_window = f"{1 / wr.max():.6e},{1 / wr.min():.6e}"
+    assert export_cli.main(args[:-2] + ["--window", data_window, "--out-dir", str(tmp_path)]) == 0
+    terms, *_ = read_back("lsdyna", str(tmp_path), "pyvisco", "SI", "C")
+    es, el = _data_errors(terms, 0.45, d, table)[0]
+    assert es > 2 * fs or el > 2 * fl, (es, fs, el, fl)
+    # the named window is held: deviation from the full fit there at most the fit's own error
+    assert export_cli.main(args[:-2] + ["--window", f"{lo},{hi}", "--out-dir", str(tmp_path)]) == 0
+    terms, _, rho, la = read_back("lsdyna", str(tmp_path), "pyvisco", "SI", "C")
+    assert len(terms[1]) == 5 and rho == 1200.0
+    w = np.logspace(-np.log10(float(hi)), -np.log10(float(lo)), 400)
+    ds, dl = _full_dev(d, terms, w)
+    assert ds <= fs and dl <= fl, (ds, fs, dl, fl)
+    text = open(card_paths("lsdyna", str(tmp_path), "pyvisco", "C")[0]).read()
+    said = float(re.search(r"storage median ([0-9.]+)", text).group(1))
+    assert abs(said - ds) < 0.003, (said, ds)              # the header's 4 decimals, another sampling
+    Gr, _, lar = _reference(d, 0.45)
+    np.testing.assert_allclose(la([-20.0, 25.0, 80.0]), lar([-20.0, 25.0, 80.0]), rtol=TOL, atol=TOL)
+    assert export_cli.main(args[:-2] + ["--window", "1e-4,1e2", "--out-dir", str(tmp_path)]) == 0
+    terms, *_ = read_back("lsdyna", str(tmp_path), "pyvisco", "SI", "C")
+    t = np.logspace(-4, 2, 50)
+    assert np.max(np.abs(np.log10(prony_G(terms)(t) / Gr(t)))) < 0.05
+
+
+# ---- verification decks: an independent keyword / APDL reader --------------------------------
+def read_keyword_deck(path):
+    """A small LS-DYNA keyword reader written from the keyword format (not from the writer):
+    '*' starts a keyword, '$' lines are comments, data cards are comma-separated here. Returns
+    {keyword: [blocks]}, each block a list of cards (lists of strings)."""
+    deck, cur = {}, None
+    for raw in open(path).read().splitlines():
+        if raw.startswith("$") or not raw.strip():
+            continue
+        if raw.startswith("*"):
+            cur = []
+            deck.setdefault(raw.strip().upper(), []).append(cur)
+        else:
+            cur.append([f.strip() for f in raw.split(",")])
+    return deck
+
+
+def _deck_expectation(card_path, T_file, T_unit, strain, times):
+    """STRAIN * G(t / a_T(T)) of the written card by evaluate_card (T in the file's scale)."""
+    c = export.evaluate_card(card_path)
+    Tc = np.asarray(T_file, float) - (273.15 if T_unit == "K" else 0.0)
+    return [strain * c.G(np.asarray(times) / 10.0 ** c.log10_aT(T)) for T in Tc], c
+
+
+def check_lsdyna_deck(folder, stem, T_unit, to_pa):
+    deck_path = os.path.join(folder, f"{stem}_lsdyna_{TAG[T_unit]}_verify.k")
+    deck = read_keyword_deck(deck_path)
+    card = deck["*INCLUDE"][0][0][0]
+    assert os.path.exists(os.path.join(folder, card)) and card == f"{stem}_lsdyna_{TAG[T_unit]}.k"
+    solids = {int(c[0]): [int(n) for n in c[2:10]] for c in deck["*ELEMENT_SOLID"][0]}
+    node_T = {int(c[0]): float(c[1]) for c in deck["*LOAD_THERMAL_CONSTANT_NODE"][0]}
+    T = [node_T[solids[e][0]] for e in (1, 2)]
+    assert all(node_T[n] == T[i] for i, e in enumerate((1, 2)) for n in solids[e])
+    strain = {float(c[4]) for c in deck["*BOUNDARY_PRESCRIBED_MOTION_NODE"][0]}
+    assert len(strain) == 1
+    strain = strain.pop()
+    curves = {}
+    for block in deck["*DEFINE_CURVE_TITLE"]:
+        lcid = int(block[1][0])
+        curves[lcid] = np.array([[float(v) for v in c] for c in block[2:]])
+    t = curves[101][:, 0]
+    np.testing.assert_array_equal(curves[102][:, 0], t)
+    (e1, e2), c = _deck_expectation(os.path.join(folder, card), T, T_unit, strain, t)
+    np.testing.assert_allclose(curves[101][:, 1] * to_pa, e1, rtol=1e-12)
+    np.testing.assert_allclose(curves[102][:, 1] * to_pa, e2, rtol=1e-12)
+    # element 1 at the card's T_ref, element 2 hotter: 100 times faster (within rounding of T2)
+    Tc = np.array(T) - (273.15 if T_unit == "K" else 0.0)
+    assert abs(c.log10_aT(Tc[0])) < 1e-12 and -2.5 < c.log10_aT(Tc[1]) < -1.5
+    return curves, T
+
+
+def check_ansys_deck(folder, stem, T_unit, to_pa):
+    path = os.path.join(folder, f"{stem}_ansys_{TAG[T_unit]}_verify.mac")
+    text = open(path).read()
+    name, ext = re.search(r"^/INPUT,'([^']+)','([^']+)'", text, re.M).groups()
+    card = os.path.join(folder, f"{name}.{ext}")
+    assert os.path.exists(card)
+    elems = [[int(v) for v in l.split(",")[1:]] for l in text.splitlines() if l.startswith("E,")]
+    bf = {int(l.split(",")[1]): float(l.split(",")[3]) for l in text.splitlines() if l.startswith("BF,")}
+    T = [bf[e[0]] for e in elems]
+    assert all(bf[n] == T[i] for i, e in enumerate(elems) for n in e)
+    ux = {float(l.split(",")[3]) for l in text.splitlines() if l.startswith("D,") and ",UX," in l}
+    strain = max(ux)
+    assert ux == {0.0, strain}
+    assert "*VWRITE" in text and "ESOL,2,1,5,S,XZ" in text
+    rows = np.array([[float(v) for v in l[1:].split()] for l in text.splitlines()
+                     if re.match(r"^! [-+0-9.eE]+ [-+0-9.eE]+ [-+0-9.eE]+$", l)])
+    (e1, e2), _ = _deck_expectation(card, T, T_unit, strain, rows[:, 0])
+    np.testing.assert_allclose(rows[:, 1] * to_pa, e1, rtol=1e-9)       # 11 digits in the comments
+    np.testing.assert_allclose(rows[:, 2] * to_pa, e2, rtol=1e-9)
+    return rows, T
+
+
+@pytest.mark.parametrize("units", ["SI", "mm-N-s-MPa"])
+@pytest.mark.parametrize("temperature", ["K", "C"])
+@pytest.mark.parametrize("d", [WLF_MAT, ARR_MAT], ids=["WLF", "Arrhenius"])
+def test_verification_decks_expect_what_the_card_says(tmp_path, d, units, temperature):
+    """Beside every LS-DYNA and ANSYS card a one-element deck at T_ref and a hotter temperature:
+    read by the readers above, its expected stresses are STRAIN G(t / a_T(T)) of the written
+    card as evaluate_card reads it, and also of the material (vjax.Material, computed here)."""
+    if d["shift"]["law"] != "WLF" and temperature == "C":
+        pytest.skip("LS-DYNA's Arrhenius form takes absolute temperatures only")
+    path = _write(tmp_path, d)
+    assert export_cli.main([path, "--format", "lsdyna,ansys", "--nu", "0.42", "--units", units, "--full-spectrum",
+                            "--temperature", temperature, "--density", "1150"]) == 0
+    to_pa = UNIT_SCALE[units][0]
+    curves, T = check_lsdyna_deck(str(tmp_path), "mat", temperature, to_pa)
+    rows, T_ansys = check_ansys_deck(str(tmp_path), "mat", temperature, to_pa)
+    assert T == T_ansys
+    Gr, _, lar = _reference(d, 0.42)
+    Tc = np.array(T) - (273.15 if temperature == "K" else 0.0)
+    t = curves[101][:, 0]
+    for k, lcid in enumerate((101, 102)):
+        np.testing.assert_allclose(curves[lcid][:, 1] * to_pa, export.STRAIN * Gr(t / 10.0 ** lar(Tc[k])), rtol=1e-9)
+
+
+def test_verification_decks_of_the_shipped_cards(shipped, tmp_path):
+    """The shipped example: the compact ANSYS card's deck (written by vjax-fit --export) and the
+    LS-DYNA deck of a six-card refit over a working window."""
+    out, d, _ = shipped
+    check_ansys_deck(str(out.parent), "pyvisco", "C", 1.0)
+    assert export_cli.main([str(out), "--format", "lsdyna", "--nu", "0.45", "--temperature", "C", "--density",
+                            "1200", "--window", "1e-2,1e2", "--out-dir", str(tmp_path)]) == 0
+    check_lsdyna_deck(str(tmp_path), "pyvisco", "C", 1.0)
+
+
+def test_a_deck_with_the_wrong_sign_is_caught(tmp_path):
+    """The deck check fails on a deck whose hot element relaxes slower (a_T inverted)."""
+    path = _write(tmp_path, WLF_MAT)
+    assert export_cli.main([path, "--format", "lsdyna", "--nu", "0.42", "--full-spectrum", "--temperature", "K",
+                            "--density", "1150"]) == 0
+    deck = tmp_path / "mat_lsdyna_K_verify.k"
+    c = export.evaluate_card(str(tmp_path / "mat_lsdyna_K.k"))
+    text = deck.read_text()
+    T2 = float(re.search(r"element 2 at ([0-9.]+) K", text).group(1))
+    a = 10.0 ** -c.log10_aT(T2 - 273.15)                  # the inverse shift
+    lines = text.splitlines()
+    i = max(j for j, l in enumerate(lines) if l == "*DEFINE_CURVE_TITLE") + 4      # title, comment, LCID card
+    end = lines.index("*END")
+    lines[i:end] = [f"{l.split(',')[0]}, {export.STRAIN * c.G(float(l.split(',')[0]) / a)}" for l in lines[i:end]]
+    deck.write_text("\n".join(lines) + "\n")
+    with pytest.raises(AssertionError):
+        check_lsdyna_deck(str(tmp_path), "mat", "K", 1.0)
+
+
+# ---- isothermal cards, and a liquid ----------------------------------------------------------
+@pytest.mark.parametrize("temperature, T_iso", [("C", 40.0), ("K", 253.15)])
+def test_isothermal_cards_are_the_shifted_card(tmp_path, temperature, T_iso):
+    """--isothermal T: every code's card at T, read by evaluate_card, is the card at T_ref read
+    the same way, shifted to T (G_iso(t) = G(t / a_T(T))); it carries no shift (log10 a_T = 0
+    everywhere, no *TRS / TB,SHIFT / C1 / Q; LS-DYNA A = B = 0)."""
+    path = _write(tmp_path, WLF_MAT)
+    common = [path, "--format", "all", "--nu", "0.42", "--full-spectrum", "--temperature", temperature,
+              "--density", "1150"]
+    assert export_cli.main(common) == 0
+    assert export_cli.main(common + ["--isothermal", str(T_iso)]) == 0
+    Tc = T_iso - (273.15 if temperature == "K" else 0.0)
+    tag = f"{TAG[temperature]}_iso{T_iso:g}"
+    t = np.logspace(-9, 4, 120)
+    for fmt, ext in (("abaqus", ".inp"), ("ansys", ".mac"), ("lsdyna", ".k"), ("comsol", "_parameters.txt")):
+        ref = export.evaluate_card(str(tmp_path / f"mat_{fmt}_{TAG[temperature]}{ext}"))
+        iso_path = tmp_path / f"mat_{fmt}_{tag}{ext}"
+        iso = export.evaluate_card(str(iso_path))
+        np.testing.assert_allclose(iso.G(t), ref.G(t / 10.0 ** ref.log10_aT(Tc)), rtol=TOL, err_msg=fmt)
+        np.testing.assert_allclose(iso.log10_aT([-50.0, Tc, 150.0]), 0.0, atol=0.0, err_msg=fmt)
+        assert abs(iso.K / ref.K - 1) < 1e-12
+        text = iso_path.read_text()
+        assert "ISOTHERMAL card" in text and "*TRS" not in text.replace("no *TRS", "")
+        assert "TB,SHIFT" not in text.replace("no TB,SHIFT", "") and "\nC1 " not in text
+    assert abs(ref.log10_aT(Tc)) > 1                          # the shift is not trivial at T
+    assert not list(tmp_path.glob("*iso*verify*"))            # no deck for a card without a shift
+
+
+def test_melt_with_three_terms_has_no_equilibrium_modulus(tmp_path, capsys):
+    """A polystyrene melt (tests/data/ps_melt: G', G'' at 130-190 C reaching the terminal zone)
+    with --max-terms 3 fits, and every card says E_inf = 0 and carries G_inf = 0 (read back
+    here); the uncapped fit's cards too (LS-DYNA apart: its six cards cannot hold the 32-term
+    fit's 8 decades within twice its error, so it needs --window)."""
+    melt = os.path.join(os.path.dirname(__file__), "data", "ps_melt", "ps_melt.csv")
+    for cap in (["--max-terms", "3"], []):
+        out = tmp_path / f"melt{len(cap)}.json"
+        assert fit_cli.main([melt, "--tref", "160", "--law", "WLF", "--out", str(out), "--nu", "0.45",
+                             "--export", "abaqus,ansys,comsol" + (",lsdyna" if cap else ""), "--temperature", "K",
+                             "--density", "1050", "--no-plots", "--no-cache", *cap]) == 0, capsys.readouterr().err
+        d = json.loads(out.read_text())
+        if cap:
+            assert len(d["times"]) == 3
+        for fmt in ("abaqus", "ansys", "comsol") + (("lsdyna",) if cap else ()):
+            terms, *_ = read_back(fmt, str(tmp_path), out.stem, "SI", "K")
+            # G_inf = 0 (Abaqus and ANSYS: G_0 (1 - sum of ratios), zero up to rounding)
+            assert abs(terms[0]) <= 1e-12 * terms[1].sum() and len(terms[1]) <= (3 if cap else len(d["times"])), fmt
+            assert "E_inf = 0: no equilibrium modulus" in open(card_paths(fmt, str(tmp_path), out.stem, "K")[0]).read()
+        # the data say liquid: the loss exceeds the storage at the lowest reduced frequencies
+        table = dma.read([melt])
+        low = table.T == 190.0
+        assert np.all(table.loss[low][-5:] > 3 * table.storage[low][-5:])
 
 
 def test_compact_without_the_data_uses_the_recorded_errors(shipped, tmp_path, capsys):
