@@ -34,8 +34,8 @@ _programs = {}          # path -> jax.export.Exported, loaded or exported in thi
 
 def cache_dir() -> str:
     """The cache directory: $XDG_CACHE_HOME/vjax/jax or ~/.cache/vjax/jax."""
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(base, "vjax", "jax")
+    from vjax._core.cache import default_cache_dir
+    return default_cache_dir()
 
 
 def enable(disabled: bool = False):
@@ -44,15 +44,11 @@ def enable(disabled: bool = False):
     directory cannot be created (the tool then runs uncached)."""
     if disabled or os.environ.get("VJAX_NO_CACHE", "") not in ("", "0"):
         return None
-    path = cache_dir()
+    import vjax
     try:
-        os.makedirs(path, exist_ok=True)
-    except OSError:
+        path = vjax.enable_compilation_cache(cache_dir())
+    except ValueError:
         return None
-    import jax
-    jax.config.update("jax_compilation_cache_dir", path)
-    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.0)
-    jax.config.update("jax_persistent_cache_min_entry_size_bytes", 0)
     global _exported_dir
     _exported_dir = os.path.join(path, "exported")
     return path
@@ -60,14 +56,17 @@ def enable(disabled: bool = False):
 
 @functools.lru_cache(maxsize=None)
 def _sources_hash() -> str:
-    """sha256 of the vjax and fitting sources (file names and contents)."""
+    """sha256 of the vjax and fitting sources (paths and contents, every folder)."""
     import vjax
     h = hashlib.sha256()
     for package in (os.path.dirname(vjax.__file__), os.path.dirname(__file__)):
-        for name in sorted(os.listdir(package)):
-            if name.endswith(".py"):
-                with open(os.path.join(package, name), "rb") as fh:
-                    h.update(name.encode() + b"\0" + fh.read())
+        for folder, dirs, files in os.walk(package):
+            dirs.sort()
+            for name in sorted(files):
+                if name.endswith(".py"):
+                    path = os.path.join(folder, name)
+                    with open(path, "rb") as fh:
+                        h.update(os.path.relpath(path, package).encode() + b"\0" + fh.read())
     return h.hexdigest()
 
 

@@ -80,3 +80,21 @@ def test_exported_programs_skip_tracing_and_give_the_same_bits(tmp_path):
         f.write_bytes(b"not a program")
     assert _export_run(tmp_path, "--enable") == (1, plain)
     assert _export_run(tmp_path, "--enable") == (0, plain)
+
+
+def test_library_users_opt_in_to_the_cache(tmp_path):
+    """vjax.enable_compilation_cache(path): a vjax scene's programs are written there, and a
+    second process finds them (a cache hit per program, no new files); import alone writes none."""
+    snippet = ("import sys, jax\njax.config.update('jax_enable_x64', True)\nimport vjax\n"
+               "if len(sys.argv) > 1: vjax.enable_compilation_cache(sys.argv[1])\n"
+               "m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5)\n"
+               "print(float(vjax.pin_in_hole(m, 0.08, 0.005, 2800.0, omega_shaft=-6.67,"
+               " options=vjax.PinOptions(n=64)).torque))\n")
+    run = lambda *a: subprocess.run([sys.executable, "-c", snippet, *a], capture_output=True, text=True,  # noqa: E731
+                                    check=True).stdout
+    plain = run()
+    cache = tmp_path / "mine"
+    first = run(str(cache))
+    written = _files(cache)
+    assert written >= 1 and first == plain
+    assert run(str(cache)) == plain and _files(cache) == written

@@ -16,6 +16,7 @@ import warnings as _warnings
 import jax as _jax
 
 from ._core import checks
+from ._core.cache import enable_compilation_cache
 from ._core.solve import ConvergenceError
 from .materials import Arrhenius, CreepSpectrum, Lubricant, Material, WLF, as_lubricant
 from . import bodies
@@ -38,7 +39,7 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lub
            "JournalOptions", "JournalResult", "journal_bearing", "FiniteJournalOptions", "FiniteJournalResult",
            "JournalCoefficients", "journal_coefficients", "stability_threshold", "tilt_coefficients",
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
-           "initialize_processes", "checks", "reynolds"]
+           "initialize_processes", "checks", "reynolds", "enable_compilation_cache"]
 
 # The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
 # their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still
