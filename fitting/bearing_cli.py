@@ -36,7 +36,7 @@ from . import jax_cache
 
 
 def _parser():
-    p = argparse.ArgumentParser(prog="vjax-bearing", description=__doc__.splitlines()[0],
+    p = argparse.ArgumentParser(prog="vjax-bearing", description=__doc__.splitlines()[0].replace("``", ""),
                                 epilog="Units accepted (values are strings such as \"50 mm\"):\n" + _units(),
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("case", help="the case file (TOML; docs/bearing_files.md)")

@@ -120,7 +120,8 @@ def _figures(case, points, folder: Path) -> list:
     a1.set_ylabel(tkey.replace("friction_torque_", "friction torque (").replace("Nm", "N m").replace("_per_", "/") + ")")
     a2.set_ylabel("friction coefficient")
     a1.legend(fontsize=7)
-    fig.suptitle(f"{case.title}: friction against speed (x: failed point)", fontsize=9)
+    anyfail = any(not p.row["converged"] for p in points)
+    fig.suptitle(f"{case.title}: friction against speed" + (" (x: failed point)" if anyfail else ""), fontsize=9)
     fig.savefig(folder / "torque_friction.png", dpi=120)
     plt.close(fig)
     made.append(("torque_friction.png", "Friction torque and friction coefficient against speed, one line per load"
