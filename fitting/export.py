@@ -99,6 +99,7 @@ CARD_LIMIT = {"lsdyna": 6}     # GI/BETAI cards the keyword reads, the long-term
 GAS_CONSTANT = 8.314462618     # J/(mol K), as vjax.material (not imported: keeps this module JAX-free)
 KELVIN = 273.15
 LN10 = math.log(10.0)
+MIN_POINTS = 10                # DMA points inside a --window to measure a compact series on (else: the full fit)
 EXTENSION = {"abaqus": ".inp", "ansys": ".mac", "lsdyna": ".k", "comsol": ("_parameters.txt", "_branches.txt")}
 
 
@@ -311,10 +312,12 @@ def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
 
 
 # ---- the series written: compact by default, refit to a code's card limit ----------------
-def data_points(m: FEMMaterial):
-    """(target points, errors_of) from the DMA files the fit names, or None when they are not
-    all readable. ``target``: reduced omega (rad/s), storage, loss of the points in this
-    series' own modulus; ``errors_of(series)``: the series' errors on the points."""
+def data_points(m: FEMMaterial, window=None):
+    """(target points, errors_of, their reduced window) from the DMA files the fit names, or
+    None when they are not all readable (or fewer than ``MIN_POINTS`` fall inside ``window``).
+    ``target``: reduced omega (rad/s), storage, loss of the points in this series' own
+    modulus; ``errors_of(series)``: the series' errors on the points. ``window``: (omega_min,
+    omega_max) rad/s reduced: only the points inside it."""
     if not m.files or not all(os.path.exists(f) for f in m.files):
         return None
     from . import dma, relaxation
@@ -328,17 +331,23 @@ def data_points(m: FEMMaterial):
     except (ValueError, OSError):
         return None
     wr = rate * 10.0 ** m.log10_aT(table.T)
+    keep = np.ones(len(wr), bool) if window is None else (wr >= window[0]) & (wr <= window[1])
+    if keep.sum() < MIN_POINTS:
+        return None
+    wr = wr[keep]
     if table.domain == "time":
-        target = ("time", 1.0 / wr, table.modulus / m.to_data)
+        E = table.modulus[keep]
+        target = ("time", 1.0 / wr, E / m.to_data)
 
         def errors_of(s):
-            r = np.abs(np.log10(evaluate.relaxation(s.scaled(m.to_data), 1.0 / wr) / table.modulus))
+            r = np.abs(np.log10(evaluate.relaxation(s.scaled(m.to_data), 1.0 / wr) / E))
             return {"relaxation_median": float(np.median(r)), "relaxation_p90": float(np.percentile(r, 90))}
     else:
-        target = (wr, table.storage / m.to_data, table.loss / m.to_data)
+        st, ls = table.storage[keep], table.loss[keep]
+        target = (wr, st / m.to_data, ls / m.to_data)
 
         def errors_of(s):
-            return evaluate.errors_at(s.scaled(m.to_data), wr, table.storage, table.loss)
+            return evaluate.errors_at(s.scaled(m.to_data), wr, st, ls)
     return target, errors_of, (float(wr.min()), float(wr.max()))
 
 
@@ -402,7 +411,9 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
     accuracy. ``terms``: 'compact' (default; :func:`fitting.compact.choose`: the fewest terms
     within 1.5x of the full fit's medians whose loss-modulus ripple stays below the data's
     scatter, at most ``max_terms`` if given, the note saying what the cap costs) or 'full' (all
-    terms, refused above ``max_terms``).
+    terms, refused above ``max_terms``). ``window`` = (t_min, t_max) (s, reduced time at
+    T_ref): the user's working window, the main lever for fewer terms: the compact series is
+    chosen over it (accuracy on the DMA points inside it, ripple over it).
     ``limit``: the code's card limit (:data:`CARD_LIMIT`, G_inf included): a series with more
     terms is refit to ``limit - 1`` decaying terms over ``window`` = (t_min, t_max) (s,
     reduced time at T_ref). Without ``window`` the data's window is used, and refused when
@@ -414,6 +425,11 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
     if max_terms is not None and not (isinstance(max_terms, int) and max_terms >= 1):
         raise ValueError(f"max_terms must be an integer >= 1, got {max_terms!r}")
     say = messages.append if messages is not None else (lambda s: None)
+    if window is not None:
+        t_min, t_max = (float(v) for v in window)
+        if not (0 < t_min < t_max and math.isfinite(t_max)):
+            raise ValueError(f"--window must be t_min,t_max with 0 < t_min < t_max (s), got {window!r}")
+        w_user = (1.0 / t_max, 1.0 / t_min)
     data = data_points(m) if terms == "compact" or limit else None
     wdata, wsource = _window(m, data)
     long_term = not m.liquid
@@ -435,10 +451,15 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
         if data is None and not m.errors and (max_terms is None or len(m.G) <= max_terms):
             say(f"{len(m.G)} terms kept as fitted (no DMA data or recorded errors to check a refit against)")
             return m if not limit else prepare(m, "full", None, window, limit, messages)
-        if data is not None:
-            c = compact.choose(m.series, wdata, errors_of=data[1], target=data[0], max_terms=cap, long_term=long_term)
+        # over the user's working window: the DMA points inside it, or the full fit there
+        wc, wcsource, dc = wdata, f"{wsource} window", data
+        if window is not None:
+            wc, wcsource = w_user, "the window given"
+            dc = data_points(m, w_user) if data is not None else None
+        if dc is not None:
+            c = compact.choose(m.series, wc, errors_of=dc[1], target=dc[0], max_terms=cap, long_term=long_term)
         elif m.errors:
-            c = compact.choose(m.series, wdata, reference=m.errors, max_terms=cap, long_term=long_term)
+            c = compact.choose(m.series, wc, reference=m.errors, max_terms=cap, long_term=long_term)
         else:
             raise ValueError(f"{m.source}: neither the DMA files nor the fit's errors are available, so the compact "
                              "series cannot be checked against the fit's accuracy; give --full-spectrum, or keep "
@@ -448,7 +469,10 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                         for k in keys)
         what = ("median |log10(model/measured)| on the DMA data" if c.basis == "data"
                 else "median deviation from the full fit over the data window")
-        rip = f"ripple {c.ripple:.4f} decades ({_pct(c.ripple)}) vs {noise_txt}"
+        noise_c = noise_txt if window is None or c.scatter == noise else (
+            f"the data's scatter {c.scatter:.4f} decades ({_pct(c.scatter)}: the full fit's median "
+            f"|log10(E''_fit/E''_measured)| inside the window)")
+        rip = f"ripple {c.ripple:.4f} decades ({_pct(c.ripple)}) vs {noise_c}"
         verdict = (f"holds the full fit's accuracy within {compact.TOLERANCE:g}x and its ripple is below the scatter"
                    if c.met else
                    f"holds the full fit's accuracy within {compact.TOLERANCE:g}x but its ripple is NOT below the "
@@ -456,18 +480,16 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                    if c.accurate else f"does NOT hold the full fit's accuracy within {compact.TOLERANCE:g}x (the "
                    f"best of at most {cap or len(m.G)} terms" + (f": that is what --max-terms {max_terms} costs"
                                                                  if max_terms else "") + ")")
-        note = (f"compact: {len(c.series.times)} of {len(m.G)} terms over {_times(wdata)} ({wsource} window); "
-                f"{rip}; accuracy ({what}): {acc}; it {verdict}")
+        note = (f"compact: {len(c.series.times)} of {len(m.G)} terms over {_times(wc)} ({wcsource}); "
+                f"{rip}; accuracy ({what}" + (" inside the window" if window is not None else "") + f"): {acc}; it "
+                f"{verdict}")
         out = m.with_series(c.series, note)
         say(note)
     if limit and len(out.G) > limit - 1:
         if window is None:
             w, wtxt = wdata, f"{wsource} window"
         else:
-            t_min, t_max = (float(v) for v in window)
-            if not (0 < t_min < t_max and math.isfinite(t_max)):
-                raise ValueError(f"--window must be t_min,t_max with 0 < t_min < t_max (s), got {window!r}")
-            w, wtxt = (1.0 / t_max, 1.0 / t_min), f"the window {t_min:g} to {t_max:g} s"
+            w, wtxt = w_user, f"the window {t_min:g} to {t_max:g} s"
         s = compact.fit_terms(m.series, limit - 1, w, long_term=long_term)
         dev = compact.deviation(s, m.series, w)
         rip = compact.ripple_of(s, m.series, w)
@@ -943,7 +965,7 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
         if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
             series = prepare(m, "full", None, window, CARD_LIMIT[fmt], messages)
         else:
-            base = base or prepare(m, terms, max_terms, messages=messages)
+            base = base or prepare(m, terms, max_terms, window, messages=messages)
             series = base
         if T_iso is not None:
             series = isothermal_card(series, T_iso)

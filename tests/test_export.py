@@ -570,6 +570,29 @@ def test_lsdyna_refused_without_window_names_one(shipped, tmp_path, capsys):
     assert np.max(np.abs(np.log10(prony_G(terms)(t) / Gr(t)))) < 0.05
 
 
+def test_window_is_the_lever_for_fewer_terms(shipped, tmp_path):
+    """--window 1e-4,1e2 (six decades of reduced time at T_ref): the compact card has far fewer
+    terms than the default over the data's 27 decades, holds the full fit's accuracy within
+    1.5x on the DMA points inside the window (both computed here), keeps its times within the
+    window plus half a decade, and its header names the window."""
+    out, d, table = shipped
+    assert export_cli.main([str(out), "--format", "abaqus", "--nu", "0.45", "--temperature", "C", "--window",
+                            "1e-4,1e2", "--out-dir", str(tmp_path)]) == 0
+    terms, *_ = read_back("abaqus", str(tmp_path), "pyvisco", "SI", "C")
+    default, *_ = read_back("abaqus", str(out.parent), "pyvisco", "SI", "C")
+    assert len(terms[1]) <= len(default[1]) // 3, (len(terms[1]), len(default[1]))
+    full = (d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"]))
+    _, wr = _data_errors(full, 0.45, d, table)
+    inside = (wr >= 1e-2) & (wr <= 1e4)
+    sub = dma.from_arrays(table.T[inside], table.f[inside], table.storage[inside], table.loss[inside])
+    (fs, fl), _ = _data_errors(full, 0.45, d, sub)
+    (es, el), _ = _data_errors(terms, 0.45, d, sub)
+    assert es <= 1.5 * fs and el <= 1.5 * fl, (es, fs, el, fl)
+    assert terms[2].min() >= 10 ** -4.5 and terms[2].max() <= 10 ** 2.5
+    assert "terms over 0.0001..100 s at T_ref (the window given)" in open(card_paths("abaqus", str(tmp_path),
+                                                                                   "pyvisco", "C")[0]).read()
+
+
 # ---- verification decks: an independent keyword / APDL reader --------------------------------
 def read_keyword_deck(path):
     """A small LS-DYNA keyword reader written from the keyword format (not from the writer):
