@@ -63,7 +63,7 @@ def summary_table(case, points) -> str:
     cols = [("speed_rpm", "rpm", ".4g")]
     if case.temperatures != (None,):
         cols.append(("temperature_C", "T (C)", ".4g"))
-    cols.append((load_key, load_key[5:].replace("_per_", "/").replace("_", " "), ".4g"))
+    cols.append((load_key, f"load ({load_key[5:].replace('_per_', '/')})", ".4g"))
     if case.journal:
         cols += [("eccentricity", "eps", ".3f"), ("attitude_deg", "attitude (deg)", ".1f"),
                  ("min_film_m", "h_min (um)", ".3g"), ("max_pressure_Pa", "p_max (MPa)", ".3g")]
@@ -72,7 +72,7 @@ def summary_table(case, points) -> str:
     else:
         cols += [("max_pressure_Pa", "p_max (MPa)", ".3g")]
     unit = torque_key[len("friction_torque_"):].replace("Nm", "N m").replace("_per_", "/")
-    cols += [(torque_key, f"torque ({unit})", ".4g"), ("friction_coefficient", "mu", ".4f")]
+    cols += [(torque_key, f"friction torque ({unit})", ".4g"), ("friction_coefficient", "mu", ".4f")]
     if case.journal:
         cols.append(("viscoelastic_share", "visco share", ".3f"))
     scale = {"min_film_m": 1e6, "max_pressure_Pa": 1e-6}

@@ -114,7 +114,7 @@ def _material(t: Table, base: Path):
     except ValueError as e:
         if isinstance(e, CaseError):
             raise
-        raise m.error(model, str(e)) from None
+        raise t.error("material", f"{model}: {e}") from None
     shift = None
     s = m.table("shift", None)
     if s is not None:
@@ -166,8 +166,6 @@ def _geometry(t: Table, scene: str) -> dict:
         g["length"] = t.quantity("length", "length", None)
         if not g["R_inner"] < g["R_outer"]:
             raise t.error("inner_radius", f"must be below outer_radius, got {g['R_inner']} >= {g['R_outer']} m")
-        if g["clearance"] is not None and g["clearance"] < 0:
-            raise t.error("diametral_clearance", f"must be >= 0, got {g['clearance']} m")
     t.close()
     return g
 

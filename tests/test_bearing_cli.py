@@ -102,6 +102,8 @@ def test_units():
     (("scene = \"finite_journal\"", "scene = \"thrust\""), "case.scene", "expected one of"),
     (("[operating]", "[operating]\nspeed_max = \"1 rpm\""), "operating.speed_max", "unknown key"),
     (("load = [\"1 kN\"]", "load = [\"1 kN\", \"2 Pa\"]"), "operating.load", "unknown unit"),
+    (("load = [\"1 kN\"]", "load = [\"-1 kN\"]"), "operating.load", "> 0"),
+    (("thickness = \"2 mm\"", "thickness = \"2\""), "housing.thickness", "missing unit"),
 ])
 def test_bad_input_refused_naming_the_key_and_nothing_written(tmp_path, capsys, edit, key, words):
     shutil.copy(EXAMPLES / "polymer_liner.json", tmp_path / "liner.json")
@@ -124,6 +126,14 @@ def test_bad_set_value_refused(tmp_path, capsys):
     assert code == 2 and "grid.n" in err and not (tmp_path / "r").exists()
     code, _, err = _run(capsys, case, "--out", tmp_path / "r", "--set", "grid.n=4")
     assert code == 2 and "grid.n" in err and not (tmp_path / "r").exists()
+
+
+def test_inline_material_refused_naming_the_key(tmp_path, capsys):
+    code, _, err = _run(capsys, EXAMPLES / "pin_joint.toml", "--out", tmp_path / "r",
+                        "--set", 'housing.material.Einf="0.5 MPa"')       # below E0 = 1 MPa
+    assert code == 2 and "housing.material:" in err and "Einf" in err and not (tmp_path / "r").exists()
+    code, _, err = _run(capsys, EXAMPLES / "pin_joint.toml", "--out", tmp_path / "r", "--set", "housing.material.nu=0.7")
+    assert code == 2 and "housing.material.nu:" in err and not (tmp_path / "r").exists()
 
 
 def _read_coefficients(path):
