@@ -229,3 +229,21 @@ def test_finite_journal_coefficients_read_back(tmp_path, capsys):
         np.testing.assert_allclose(K[i], np.asarray(co.stiffness)[0], rtol=1e-6, atol=1e-9 * abs(K[i]).max())
         np.testing.assert_allclose(C[i], np.asarray(co.damping)[0], rtol=1e-6, atol=1e-9 * abs(C[i]).max())
     assert (tmp_path / "lined" / "film_pressure.png").exists() and (tmp_path / "lined" / "eccentricity_locus.png").exists()
+
+
+def test_viscoelastic_share_against_the_dissipations(tmp_path, capsys):
+    """A viscoelastic bore turning under a fixed load: its share of the power (from torques, in
+    points.csv) equals its hysteresis over all the dissipation vjax reports (the power balance)."""
+    import vjax
+    text = LONG.replace('speed = ["10 rad/s", "1000 rad/s"]', 'speed = "100 rad/s"\nturning = "housing"') \
+               .replace('load = ["200 N/m", "20000 N/m"]', 'load = "200 N/m"')
+    code, _, err = _run(capsys, _write(tmp_path, text), "--out", tmp_path, "--quiet")
+    assert code == 0, err
+    with open(tmp_path / "long_soft" / "points.csv", newline="") as fh:
+        (row,) = list(csv.DictReader(fh))
+    r = vjax.journal_bearing(0.05, 5e-5, 0.01, 200.0, housing=vjax.hole(vjax.Material.sls(1e6, 1e7, 0.01, 0.45)),
+                             omega_housing=100.0, options=vjax.JournalOptions(n=64))
+    total = float(r.dissipation_fluid + r.dissipation_housing + r.dissipation_shaft)
+    share = float(row["viscoelastic_share"])
+    assert 1e-5 < share < 1
+    assert share == pytest.approx(float(r.dissipation_housing) / total, rel=1e-6)
