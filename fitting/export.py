@@ -377,18 +377,32 @@ def _medians(ref: dict) -> dict:
     return {k: ref[k] for k in ("storage_median", "loss_median") if k in ref}
 
 
-def widest_window(full: compact.Series, n: int, window, reference: dict, long_term: bool = True):
+def widest_window(full: compact.Series, n: int, window, reference: dict, long_term: bool = True, points=None):
     """The widest window of whole decades of reduced time (s at T_ref) inside ``window``
     (rad/s) over which ``n`` terms (:func:`fitting.compact.fit_terms`) stay within twice the
     full fit's error: their median deviation from ``full`` there at most the full fit's median
-    error on the data (``reference``), storage and loss. Returns (t_min, t_max) or None.
+    error on the data (``reference``), storage and loss (relaxation data: E(t), as measured).
+    With ``points(w)`` (the DMA points inside a window w, as :func:`data_points`, or None)
+    a window holding at least ``MIN_POINTS`` of them is judged as the refusal is: the refit's
+    medians on those points at most twice the full fit's on them. Returns (t_min, t_max) or
+    None.
     Widths are bisected; at each, windows are tried from the middle of the data outwards."""
     lim = _medians(reference)
     lo, hi = math.floor(-math.log10(window[1])), math.ceil(-math.log10(window[0]))
+    relaxation = "relaxation_median" in reference       # relaxation data: judged on E(t), as measured
 
     def holds(a, b):
         w = (10.0 ** -b, 10.0 ** -a)
-        d = compact.deviation(compact.fit_terms(full, n, w, long_term=long_term), full, w)
+        s = compact.fit_terms(full, n, w, long_term=long_term)
+        inside = points(w) if points is not None else None
+        if inside is not None:
+            got, ref = _medians(inside[1](s)), _medians(inside[1](full))
+            return all(got[k] <= 2.0 * v for k, v in ref.items())
+        if relaxation:
+            t = np.logspace(a, b, 10 * (b - a) + 1)
+            return float(np.median(np.abs(np.log10(evaluate.relaxation(s, t) / evaluate.relaxation(full, t))))) \
+                <= reference["relaxation_median"]
+        d = compact.deviation(s, full, w)
         return all(d[k] <= v for k, v in lim.items())
 
     def at(width):
@@ -506,7 +520,8 @@ def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=
                 how = "deviation from the full fit: " + ", ".join(f"{k.split('_')[0]} median {dev[k]:.4f} against "
                                                                   f"the full fit's error {v:.4f}" for k, v in lim.items())
             if not holds:
-                best = widest_window(m.series, limit - 1, w, ref, long_term)
+                best = widest_window(m.series, limit - 1, w, ref, long_term,
+                                     points=(lambda ww: data_points(m, ww)) if data is not None else None)
                 dec = [f"1e{round(math.log10(t))}" for t in best] if best else None
                 where = (f"the widest window {limit} cards do hold is {dec[0]}..{dec[1]} s at T_ref: give --window "
                          f"{dec[0]},{dec[1]} (the reduced times the analysis will see), "
