@@ -99,6 +99,10 @@ def material_from_dict(d: dict, where: str = "material"):
     modulus = d.get("modulus", "E")
     if modulus not in ("E", "G"):
         raise ValueError(f"{where}: modulus must be 'E' or 'G', got {modulus!r}")
+    E0 = d.get("E0")
+    if isinstance(E0, (int, float)) and E0 == 0:
+        raise ValueError(f"{where}: E0 = 0, a liquid (no equilibrium modulus): vjax's contact and bearing models "
+                         "need a solid (E0 > 0); vjax-export writes such a material's FEM cards (G_inf = 0)")
     try:
         moduli = np.asarray(_need(d, "moduli", where), float)
         times = np.asarray(_need(d, "times", where), float)

@@ -810,3 +810,21 @@ def test_fit_cli_checks_export_options_first(tmp_path, capsys):
                          "--nu", "0.45"]) == 2
     assert "--temperature" in capsys.readouterr().err
     assert not os.path.exists(out)
+
+
+def test_a_liquid_json_exports_and_vjax_refuses_it_clearly(tmp_path):
+    """A material JSON with E0 = 0: every card carries G_inf = 0 and says E_inf = 0; loading it
+    as a vjax material (what a bearing does) is refused with a message that says why."""
+    from fitting import io
+    d = dict(WLF_MAT, E0=0.0)
+    path = _write(tmp_path, d)
+    assert export_cli.main([path, "--format", "all", "--nu", "0.42", "--full-spectrum", "--temperature", "K",
+                            "--density", "1150"]) == 0
+    for fmt in export.FORMATS:
+        terms, *_ = read_back(fmt, str(tmp_path), "mat", "SI", "K")
+        assert abs(terms[0]) <= 1e-12 * terms[1].sum(), fmt
+        assert "E_inf = 0: no equilibrium modulus" in open(card_paths(fmt, str(tmp_path), "mat", "K")[0]).read()
+    with pytest.raises(ValueError, match="E0 = 0, a liquid"):
+        io.material_from_dict(d, path)
+    with pytest.raises(ValueError, match="E0 must be a finite number >= 0"):
+        export.split(dict(WLF_MAT, E0=-1.0))
