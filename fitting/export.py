@@ -59,13 +59,22 @@ Functions": the WLF field order is confirmed by pyvisco's ANSYS card
 are not confirmed by quoted text.
 
 Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
-terms whose medians on the DMA data stay within 1.5x of the full fit's and whose loss modulus
-has at most 3 local extrema over the data (times placed where the loss needs them: 39-44
-terms over the shipped data's 26-40 decades); ``max_terms`` caps the count (20 terms hold the
-accuracy there but ripple, and the note says so). A code
-with a card limit gets the best series of that many terms over the user's working window
-(``window``, default the data's): a refit, never a truncation, whose accuracy is printed and
-written into the file. The temperature scale has no default (``temperature='K'`` or ``'C'``,
+terms whose medians on the DMA data stay within 1.5x of the full fit's and whose loss-modulus
+ripple (the largest swing of an extremum the full fit does not have) stays below the data's
+scatter about the full fit (its median |log10(E''_fit/E''_measured)|); ``max_terms`` caps the
+count and the note says what the cap costs. ``window`` (reduced times at T_ref, s: the user's
+working window) is the main lever for fewer terms: the series is then chosen over it. A code
+with a card limit (LS-DYNA: six cards) gets the best series of that many terms over the window,
+a refit, never a truncation; without ``window`` it is refused when the refit cannot hold the
+data's window within twice the full fit's error, and the message names the widest window it
+does hold (:func:`widest_window`). Every header states the count, the window, the ripple and
+the accuracy. A liquid (the fit's E0 below 0.1 % of its storage modulus at the data's lowest
+frequency: :func:`fitting.compact.is_liquid`) is written with G_inf = 0, and the header says
+so. ``isothermal`` writes every card at one temperature (times a_T(T) tau_i, no shift fields).
+Beside each LS-DYNA and ANSYS card (not isothermal) a one-element verification deck is written
+(:func:`verification_plan`): the element at a step shear strain at T_ref and a hotter
+temperature, with the stresses the card's material predicts, so the solver confirms the
+shift's sign and base. The temperature scale has no default (``temperature='K'`` or ``'C'``,
 also in the file names); the density (``density``, kg/m^3) is written where each code wants
 it and LS-DYNA's RO is refused without it. Units: ``"SI"`` (Pa, s, kg/m^3, J/mol) or
 ``"mm-N-s-MPa"`` (MPa, s, t/mm^3, mJ/mol). Every header names the source DMA files, the fit's
