@@ -10,7 +10,10 @@ atomically and the plots next to it (``<out stem>_master.png`` etc.). Exit codes
 1 bad data or failed fit (message on stderr), 2 bad command line. An existing output is
 never left half-written: every file goes through a temporary file and ``os.replace``.
 ``--export abaqus,ansys,lsdyna,comsol`` also writes the material for FEM codes (see
-``vjax-export``, :mod:`fitting.export`; needs ``--nu`` < 0.5 or ``--bulk-modulus``).
+``vjax-export``, :mod:`fitting.export`; needs ``--nu`` < 0.5 or ``--bulk-modulus``; its
+``--window``, ``--isothermal`` and verification decks as there). A liquid (a melt: no
+equilibrium modulus) fits with ``--max-terms`` too: E0 is held at a floor far below the data,
+and the FEM cards write E_inf = 0.
 Compiled functions are kept in a persistent cache (:mod:`fitting.jax_cache`; ``--no-cache``).
 """
 from __future__ import annotations
@@ -35,7 +38,8 @@ def _parser():
                    help="smooth: relaxation times on a fixed grid, smoothness penalty chosen by GCV (a loss modulus "
                         "without ringing; default); free: free relaxation times, their number by BIC (fewer terms)")
     p.add_argument("--max-terms", type=int, default=None, metavar="N",
-                   help="at most N Prony terms (smooth method; Abaqus users often keep <= 13)")
+                   help="at most N Prony terms (smooth method; Abaqus users often keep <= 13). For the FEM "
+                        "cards' count see --export's --window (fewer terms over a working window)")
     p.add_argument("--nu", type=float, default=0.5, help="Poisson's ratio (default 0.5)")
     p.add_argument("--kind", choices=["E", "G"], help="override tensile/shear from the files")
     p.add_argument("--shear", action="store_true", help="keep shear moduli (no G -> E conversion)")

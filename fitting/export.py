@@ -896,7 +896,7 @@ def _ansys_deck(m: FEMMaterial, u: _Units, card: str) -> str:
     lines += [f"N,{n},{_num(x)},{_num(y)},{_num(z)}" for k in (0, 1) for n, x, y, z in _nodes(k)]
     lines += ["E," + ",".join(str(n) for n, *_ in _nodes(k)) for k in (0, 1)]
     lines += [f"BF,{n},TEMP,{_num(T[k])}" for k in (0, 1) for n, *_ in _nodes(k)]
-    lines += ["FINISH", "/SOLU", "ANTYPE,STATIC", "NLGEOM,OFF", "OUTRES,ALL,ALL"]
+    lines += ["FINISH", "/SOLU", "ANTYPE,STATIC", "NLGEOM,OFF", "AUTOTS,OFF", "OUTRES,ALL,ALL"]
     lines += [f"D,{n},UY,0" for k in (0, 1) for n, *_ in _nodes(k)]
     lines += [f"D,{n},UZ,0" for k in (0, 1) for n, *_ in _nodes(k)]
     lines += [f"D,{n},UX,{_num(STRAIN * z)}" for k in (0, 1) for n, x, y, z in _nodes(k)]

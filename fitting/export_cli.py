@@ -22,9 +22,10 @@ and ``<stem>_comsol_<K|degC>_parameters.txt`` / ``_branches.txt`` in ``--out-dir
 next to the JSON). Exit codes: 0 success, 1 a material that cannot be exported (message on
 stderr, nothing written), 2 bad command line. Files are written atomically.
 
-Example::
+Example (the analysis sees reduced times 0.1 ms to 100 s at T_ref: 6 terms on the shipped
+pyvisco example, against 30 over its 27 decades without ``--window``)::
 
-    vjax-export material.json --format abaqus,lsdyna --nu 0.45 --temperature C --density 1200
+    vjax-export material.json --format abaqus,lsdyna --nu 0.45 --temperature C --density 1200 --window 1e-4,1e2
 """
 from __future__ import annotations
 
@@ -54,7 +55,8 @@ def add_arguments(p, fit: bool = False) -> None:
                    help="your working window: the reduced times (s, at T_ref) the analysis will see, the main lever "
                         "for fewer terms. LS-DYNA (six cards) is refit over it; without it LS-DYNA is refused when "
                         "six cards cannot hold the data's whole window, and the message names the widest window they "
-                        "do hold. Example (docs/fem_export.md): --window 1e-4,1e2")
+                        "do hold. Example: --window 1e-4,1e2 gives 6 terms on the shipped pyvisco example, against 30 over its "
+                        "27 decades (docs/fem_export.md)")
     g.add_argument("--isothermal", type=float, default=None, metavar="T",
                    help="write every card at the one temperature T (in the --temperature scale): relaxation times "
                         "a_T(T) tau_i, no shift fields (unambiguous in every code; what most single-temperature "
@@ -121,7 +123,9 @@ def _parser():
                                 description="Write a fitted material JSON for finite-element codes (Abaqus, ANSYS, "
                                             "LS-DYNA, COMSOL): shear Prony series, bulk modulus, shift law.",
                                 formatter_class=argparse.RawDescriptionHelpFormatter,
-                                epilog="Example: vjax-export material.json --format abaqus,ansys --nu 0.45")
+                                epilog="Example: vjax-export material.json --format abaqus,ansys --nu 0.45 --temperature C "
+                                       "--window 1e-4,1e2 (the analysis sees reduced times 0.1 ms..100 s at T_ref: "
+                                       "6 terms on the shipped pyvisco example, 30 without --window)")
     p.add_argument("material", help="material JSON (vjax-fit output)")
     p.add_argument("--format", required=True, help="comma-separated: abaqus, ansys, lsdyna, comsol (or all)")
     p.add_argument("--out-dir", default=None, help="output directory (default: the JSON's)")
