@@ -53,7 +53,8 @@ def add_arguments(p, fit: bool = False) -> None:
                    help="write every Prony term of the fit instead of the compact series")
     g.add_argument("--window", default=None, metavar="T_MIN,T_MAX",
                    help="your working window: the reduced times (s, at T_ref) the analysis will see, the main lever "
-                        "for fewer terms. LS-DYNA (six cards) is refit over it; without it LS-DYNA is refused when "
+                        "for fewer terms: every card's series is chosen over it (LS-DYNA's six cards refit over it). "
+                        "Without it LS-DYNA is refused when "
                         "six cards cannot hold the data's whole window, and the message names the widest window they "
                         "do hold. Example: --window 1e-4,1e2 gives 6 terms on the shipped pyvisco example, against 30 over its "
                         "27 decades (docs/fem_export.md)")
