@@ -24,11 +24,12 @@ from .bodies import Body, disc, green, half_plane, hole, land, layer3d, liner, s
 from .bodies.operator import RingOperator, effective_compliance, element_symbol, grid, ring_operator
 from .contact import ContactOptions, ContactSolution, solve_contact
 from .films import reynolds
+from .films.roughness import Roughness
 from .scenes.pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .scenes.roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalCoefficients, JournalOptions,
-                             JournalResult, journal_bearing, journal_coefficients, stability_threshold,
-                             tilt_coefficients)
+                             JournalResult, StribeckCurve, journal_bearing, journal_coefficients,
+                             stability_threshold, stribeck_curve, tilt_coefficients)
 from . import reference
 from .sweep import initialize_processes, sweep
 
@@ -39,7 +40,7 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lub
            "JournalOptions", "JournalResult", "journal_bearing", "FiniteJournalOptions", "FiniteJournalResult",
            "JournalCoefficients", "journal_coefficients", "stability_threshold", "tilt_coefficients",
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
-           "initialize_processes", "checks", "reynolds", "enable_compilation_cache"]
+           "initialize_processes", "checks", "reynolds", "enable_compilation_cache", "Roughness", "StribeckCurve", "stribeck_curve"]
 
 # The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
 # their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still

@@ -32,6 +32,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from . import reynolds
+from .roughness import shear_flow_factor
 
 SPACINGS = ("uniform", "cosine")
 
@@ -76,20 +77,40 @@ def upwind(fraction, v):
     return jnp.where(v >= 0, fraction, jnp.roll(fraction, -1, axis=0))
 
 
-def fluxes(p, h, R, z, eta, v, fraction=None):
+def couette_flux(h, v, rough=None, sliding=0.0):
+    """The flux the surfaces' motion carries through a face of film ``h`` (m^2/s per unit
+    width): v h for smooth surfaces; with ``rough`` (:class:`~vjax.films.roughness.Roughness`)
+    Patir and Cheng's v h_T + (sliding/2) Vr sigma Phi_s(H_c), ``sliding`` = U_journal - U_bore
+    (m/s) the speed of the surface whose roughness counts positive in Vr relative to the other
+    (h_T the expected gap, or h with ``rough.couette == "nominal"``)."""
+    if rough is None:
+        return v * h
+    Hc, _ = rough.clipped(h)
+    base = rough.expected_gap(h) if rough.couette == "expected" else h
+    return v * base + 0.5 * sliding * rough.Vr * rough.sigma * shear_flow_factor(Hc, rough.gamma)
+
+
+def fluxes(p, h, R, z, eta, v, fraction=None, rough=None, sliding=0.0):
     """Face films, gradients and fluxes of pressure ``p`` and film ``h`` on all nodes (n, m + 1):
-    theta faces (i + 1/2, j): ``hx``, ``dpdx`` (Pa/m), ``qx`` (m^2/s per unit width);
-    z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per unit arc). With a
-    liquid ``fraction`` (n, m + 1) ("jfo") the Couette flux carries the upwind node's liquid
-    only (a striated cavity, as in 1D); the axial flux is the pressure's alone."""
+    theta faces (i + 1/2, j): ``hx``, ``dpdx`` (Pa/m), ``qx`` (m^2/s per unit width), its
+    Couette part ``cx``; z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per
+    unit arc); the conductances' gap terms ``gx``, ``gz`` (m^3: h^3, or with ``rough`` Patir
+    and Cheng's phi h_c^3 along and across the sliding; the Couette flux :func:`couette_flux`
+    with ``sliding``). With a liquid ``fraction`` (n, m + 1) ("jfo") the Couette flux carries
+    the upwind node's liquid only (a striated cavity, as in 1D); the axial flux is the
+    pressure's alone."""
     dth = 2 * jnp.pi / p.shape[0]
     hx = 0.5 * (h + jnp.roll(h, -1, axis=0))
     dpdx = (jnp.roll(p, -1, axis=0) - p) / (R * dth)
     hz = 0.5 * (h[:, 1:] + h[:, :-1])
     dpdz = jnp.diff(p, axis=1) / jnp.diff(z)[None, :]
-    couette = v * hx if fraction is None else v * hx * upwind(fraction, v)
-    return dict(hx=hx, dpdx=dpdx, qx=-hx**3 * dpdx / (12 * eta) + couette,
-                hz=hz, dpdz=dpdz, qz=-hz**3 * dpdz / (12 * eta))
+    gx = hx**3 if rough is None else rough.poiseuille(hx)
+    gz = hz**3 if rough is None else rough.poiseuille_across(hz)
+    couette = couette_flux(hx, v, rough, sliding)
+    if fraction is not None:
+        couette = couette * upwind(fraction, v)
+    return dict(hx=hx, dpdx=dpdx, qx=-gx * dpdx / (12 * eta) + couette, cx=couette, gx=gx,
+                hz=hz, dpdz=dpdz, qz=-gz * dpdz / (12 * eta), gz=gz)
 
 
 def net_outflow(f, R, z):
@@ -105,9 +126,9 @@ def conductance(f, R, z, eta):
     diagonal of the pressure operator, the scale of its balance."""
     dth = 2 * jnp.pi / f["hx"].shape[0]
     dz = node_widths(z)[1:-1]
-    hx3 = f["hx"][:, 1:-1] ** 3
+    hx3 = f["gx"][:, 1:-1]
     gx = (hx3 + jnp.roll(hx3, 1, axis=0)) * dz[None, :] / (R * dth)
-    gz = f["hz"] ** 3 * R * dth / jnp.diff(z)[None, :]
+    gz = f["gz"] * R * dth / jnp.diff(z)[None, :]
     return (gx + gz[:, 1:] + gz[:, :-1]) / (12 * eta)
 
 
@@ -137,14 +158,16 @@ def resultants(p_load, theta, z, R):
     return F, M
 
 
-def end_outflow(p, h, z, R, eta):
+def end_outflow(p, h, z, R, eta, rough=None):
     """Flow out of the land through both end planes (m^3/s): -h^3/(12 eta) dp/dz at z = +-L/2
-    outward, the gradient from the quadratic through the end node and its two neighbours
-    (second order on any spacing; a flux at the last face would be first order)."""
+    outward (with ``rough``: phi_y h_c^3 for h^3), the gradient from the quadratic through the
+    end node and its two neighbours (second order on any spacing; a flux at the last face would
+    be first order)."""
     dth = 2 * jnp.pi / p.shape[0]
 
     def upper(p, h, z):
         d1, d2 = z[-1] - z[-2], z[-1] - z[-3]
         dpdz = p[:, -1] * (1 / d1 + 1 / d2) - p[:, -2] * d2 / (d1 * (d2 - d1)) + p[:, -3] * d1 / (d2 * (d2 - d1))
-        return -jnp.sum(h[:, -1] ** 3 * dpdz) * R * dth / (12 * eta)
+        g = h[:, -1] ** 3 if rough is None else rough.poiseuille_across(h[:, -1])
+        return -jnp.sum(g * dpdz) * R * dth / (12 * eta)
     return upper(p, h, z) + upper(p[:, ::-1], h[:, ::-1], -z[::-1])

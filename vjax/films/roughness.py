@@ -120,12 +120,13 @@ def _F_kummer(n, H):
     - sqrt(2 pi) H/Gamma((n+1)/2) M(1+n/2, 3/2, z)], z = H^2/2. For H < 0 both terms are
     positive series: no cancellation; 128 terms reach 1e-15 for z <= 50 (H >= -10)."""
     z = 0.5 * H * H
+    logz = jnp.log(jnp.maximum(z, jnp.finfo(H.dtype).tiny))     # z = 0: the k = 0 term alone
     k = jnp.arange(_KUMMER_TERMS, dtype=H.dtype)
     lg = jax.scipy.special.gammaln
 
     def m(a, b):     # e^-z M(a, b, z), summed in log space
         lt = (lg(a + k) - lg(a) - lg(b + k) + lg(b) - lg(k + 1.0)
-              + k * jnp.log(z)[..., None] - z[..., None])
+              + k * logz[..., None] - z[..., None])
         return jnp.exp(jax.scipy.special.logsumexp(lt, axis=-1))
 
     pre = math.exp(math.lgamma(n + 1) - 0.5 * (n + 1) * math.log(2) - 0.5 * math.log(2 * math.pi))
@@ -149,7 +150,6 @@ def _F_asymptotic(n, H):
 def _F(n: float, H):
     Hl = jnp.maximum(H, _LAGUERRE_H_MIN)
     Hk = jnp.clip(H, _KUMMER_H_MIN, _LAGUERRE_H_MIN)       # keep the unused branches finite
-    Hk = jnp.where(Hk == 0.0, 1e-30, Hk)                  # log z at z = 0
     Ha = jnp.minimum(H, _KUMMER_H_MIN)
     return jnp.where(H >= _LAGUERRE_H_MIN, jnp.exp(_log_F_laguerre(n, Hl)),
                      jnp.where(H > _KUMMER_H_MIN, _F_kummer(n, Hk), _F_asymptotic(n, Ha)))

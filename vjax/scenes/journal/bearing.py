@@ -21,7 +21,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
                     supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
                     shift=None, initial: JournalResult | FiniteJournalResult | None = None,
                     options: JournalOptions | FiniteJournalOptions | None = None, throw: bool = True, length=None,
-                    tilt=None, supply_width=1.0) -> JournalResult | FiniteJournalResult:
+                    tilt=None, supply_width=1.0, roughness=None) -> JournalResult | FiniteJournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
     The equations, conventions and solver: :mod:`vjax.scenes.journal.long` (infinitely long)
@@ -63,6 +63,10 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         ``tilt`` (gamma_x, gamma_y) (rad), ``options`` is a :class:`~vjax.FiniteJournalOptions`,
         the bodies deform as plane-strain slices (each axial section as the ring under its own
         pressure); returns a :class:`~vjax.FiniteJournalResult` (SI totals).
+      roughness: a :class:`~vjax.Roughness` (the surfaces' rms roughness, asperities, composite
+        modulus and boundary friction): mixed lubrication, Patir and Cheng's average flow with
+        Greenwood and Tripp's asperity contact, from full film down to a journal that barely
+        turns (finite bearing, rigid bodies; docs/theory.md). None: smooth surfaces.
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> sol = journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=64))
@@ -75,7 +79,10 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     if is_finite(length, tilt, supply_width):
         check_supported(length, groove, cavitation)
         return finite_journal_bearing(R, radial_clearance, viscosity, load, length, supply_width=supply_width,
-                                      tilt=tilt, groove=groove or "fixed",
+                                      tilt=tilt, groove=groove or "fixed", roughness=roughness,
                                       options=FiniteJournalOptions() if options is None else options, **common)
+    if roughness is not None:
+        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=); the "
+                         "infinitely long bearing's film has no roughness model yet")
     return long_journal_bearing(R, radial_clearance, viscosity, load, groove=groove,
                                 options=JournalOptions() if options is None else options, **common)

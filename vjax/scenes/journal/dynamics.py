@@ -141,7 +141,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
                          shift=None,
                          initial: JournalResult | FiniteJournalResult | None = None,
                          options: JournalOptions | FiniteJournalOptions | None = None, throw: bool = True, length=None,
-                         tilt=None, supply_width=1.0) -> JournalCoefficients:
+                         tilt=None, supply_width=1.0, roughness=None) -> JournalCoefficients:
     """Stiffness and damping of a (visco)elastic journal bearing at whirl frequencies ``whirl``.
 
     The arguments are those of :func:`vjax.journal_bearing` (which solves the steady state,
@@ -173,9 +173,12 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
         check_supported(length, groove, cavitation)
         sol, Z, K, C = finite_coefficients(
             R, radial_clearance, viscosity, load, length, whirl, supply_width=supply_width, tilt=tilt,
-            groove=groove or "fixed", options=FiniteJournalOptions() if options is None else options, **common)
+            groove=groove or "fixed", roughness=roughness,
+            options=FiniteJournalOptions() if options is None else options, **common)
         return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=K, damping=C, speed=speed, steady=sol,
                                    length=jnp.asarray(length, whirl.dtype))
+    if roughness is not None:
+        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=)")
     sol, Z, C = long_coefficients(R, radial_clearance, viscosity, load, whirl, groove=groove,
                                   options=JournalOptions() if options is None else options, **common)
     return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=Z.real, damping=C, speed=speed, steady=sol)

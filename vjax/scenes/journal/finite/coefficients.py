@@ -83,7 +83,8 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
     V-cycle above); a relative residual above KRYLOV_ACCEPT is reported as a failure
     (``stats``). Otherwise a dense complex LU of the matrix from N products (small grids).
     Rigid bodies: the block solve alone, exact, up to EXACT_WIDTH cells across; GMRES with the
-    V-cycle above."""
+    V-cycle above. With rough surfaces the asperities' force, which follows the journal's
+    position without delay, adds its stiffness to K."""
     n, m = cfg.n, cfg.m
     N = unknowns(cfg)
     pz0 = x0[:N]
@@ -148,6 +149,13 @@ def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
         return G @ dp.T, jnp.max(residual)
 
     Z, residual = jax.vmap(one)(whirl)
+    if pr.rough is not None:    # the asperities' force follows the journal's position at once: a stiffness
+        def asperity_loads(q):
+            p = dataclasses.replace(pr, tilt=pr.tilt + q[2:4]) if tilt else pr
+            motion = jnp.concatenate([q[:2], jnp.zeros(2, q.dtype)])
+            f = fields(x0, p, cfg, motion, deformation=(U0, zero))
+            return jnp.concatenate(film2d.resultants(f["p_asp"], theta, z, pr.R))[:k]
+        Z = Z - jax.jacfwd(asperity_loads)(q0[:k])[None]
     accept = KRYLOV_ACCEPT if x0.dtype == jnp.float64 else 1e-3
     stats = _solve.Stats(jnp.ones(whirl.shape, jnp.int32), residual,
                          jnp.where(residual <= accept, _solve.SUCCESS, _solve.INNER_FAILED))

@@ -14,12 +14,12 @@ from ....bodies.land import LandOperator
 from ....bodies.operator import RingOperator, grid
 from ....films import blocks, film2d, multigrid, reynolds
 
+from ....films.roughness import Roughness
 
 KRYLOV_TOL = 1e-9         # relative residual of each GMRES solve (Newton steps and derivatives)
-
 KRYLOV_MAX_ITER = 300     # GMRES steps per solve (restarted every 20)
-
 EXACT_WIDTH = 32          # Newton's preconditioner: the exact block solve up to this many unknown cells across the
+                          # width (O(n m^3)), a multigrid V-cycle above (O(n m), :mod:`vjax.films.multigrid`)
 
 
 @jax.tree_util.register_dataclass
@@ -48,6 +48,7 @@ class Params:
     op_J: RingOperator | LandOperator | None   # 3D layer's land operator; None: rigid
     compliance: jax.Array        # the bodies' compliance scaled by this (1; less in the solver's continuation)
     smoothing: jax.Array         # mu of the "jfo" switch (0: exact; more in the solver's homotopy)
+    rough: Roughness | None      # the surfaces' roughness (mixed lubrication); None: smooth
     x0: jax.Array                # Newton's start (travels with the parameters, not differentiated)
 
 
@@ -107,7 +108,9 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     position and gives the film's rate dh/dt (the dynamic coefficients). ``relaxed`` (traced
     bool): Reynolds conditions relaxed to half-Sommerfeld ones (the solver's fallback).
     ``deformation``: (U, dU/dt) (m, m/s; (n, m + 1) each) the bodies' displacement u_B + u_J and
-    its rate, given instead of computed from the pressure (the dynamic coefficients)."""
+    its rate, given instead of computed from the pressure (the dynamic coefficients). With rough
+    surfaces (``pr.rough``) the fluxes are Patir and Cheng's average flow and ``p_asp`` (n, m + 1)
+    (Pa) the asperities' Greenwood-Tripp pressure (zero for smooth ones)."""
     n, m = cfg.n, cfg.m
     N = unknowns(cfg)
     theta, _ = grid(n)
@@ -126,9 +129,15 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
         uB, uJ = deformation[0], jnp.zeros_like(deformation[0])
         hdot = hdot + deformation[1]
     h = film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
-    f = film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None)
+    f = film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None, pr.rough, sliding(pr))
+    p_asp = jnp.zeros_like(h) if pr.rough is None else pr.rough.asperity_pressure(h)
     return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
-                fraction=fraction)
+                fraction=fraction, p_asp=p_asp)
+
+
+def sliding(pr: Params):
+    """U_journal - U_bore (m/s): the surfaces' relative speed along x."""
+    return pr.omega_J * pr.RJ - pr.omega_B * pr.R
 
 
 def loading(pz, pr: Params, cfg: Config, relaxed=False):
@@ -172,8 +181,10 @@ def deformations(p_load, pr: Params, z):
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None,
                   subcell=1.0):
-    """Scaled cell equations (n (m - 1),) and the film's force on the journal (N, grid axes);
-    the arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
+    """Scaled cell equations (n (m - 1),), the force of the film and the asperities on the
+    journal (N, grid axes) and the film's margin (m, positive where the model holds,
+    :func:`margin`); the
+    arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
     unknowns, with which a "jfo" cavity's liquid fraction changes (the dynamic coefficients);
     ``subcell``: 1 locates a Reynolds rupture within its cell, 0 on a face (the solver's first
     stages)."""
@@ -186,19 +197,27 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
         growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, interior(rate, cfg), 0.0)
     out = out + pr.R * dth * film2d.node_widths(f["z"])[None, 1:-1] * growth
     scale = film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
-    couette = pr.v * f["hx"][:, 1:-1]
+    couette = f["cx"][:, 1:-1]
     couette_out = (couette - jnp.roll(couette, 1, axis=0)) * film2d.node_widths(f["z"])[None, 1:-1]
     r = film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref,
                                couette_out, pr.v, subcell)
     if cfg.cavitation == "reynolds" and relaxed is not False:
         sommerfeld = film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
         r = jnp.where(relaxed, sommerfeld, r)
-    F, _ = film2d.resultants(f["p_load"], f["theta"], f["z"], pr.R)
-    return own_columns(r, cfg).ravel(), F, jnp.min(f["h"])
+    F, _ = film2d.resultants(f["p_load"] + f["p_asp"], f["theta"], f["z"], pr.R)
+    return own_columns(r, cfg).ravel(), F, margin(f["h"], pr)
+
+
+def margin(h, pr: Params):
+    """The film's margin (m), positive where the model holds: min h for smooth surfaces; the
+    clearance for rough ones, whose model holds for any nominal film (a closed one is an
+    asperity layer compressed beyond its mean planes, carrying the load)."""
+    return jnp.min(h) if pr.rough is None else pr.c
 
 
 def equations(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
-    """Cell equations and the force balance (film force + load = 0, over |W|); and min film."""
+    """Cell equations and the force balance (film and asperity force + load = 0, over |W|); and
+    the film's margin (:func:`margin`)."""
     r, F, hmin = cell_residual(x, pr, cfg, relaxed=relaxed, subcell=subcell)
     return jnp.concatenate([r, (F + pr.load) / pr.W]), hmin
 

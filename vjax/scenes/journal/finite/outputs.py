@@ -1,5 +1,6 @@
 """The finite journal bearing's result: forces and moment, position, film, torques (Couette,
-Poiseuille, viscoelastic), flows and power, from converged unknowns."""
+Poiseuille, viscoelastic; with rough surfaces the asperities' share and boundary friction),
+flows and power, from converged unknowns."""
 from __future__ import annotations
 
 import dataclasses
@@ -9,7 +10,8 @@ import jax.numpy as jnp
 
 from ...._core import scene as _scene
 from ....films import film2d
-from .film import Config, Params, fields, rotation
+from ....films.roughness import friction_factor, shear_stress_factors
+from .film import Config, Params, fields, rotation, sliding
 
 
 @jax.tree_util.register_dataclass
@@ -20,8 +22,17 @@ class FiniteJournalResult(_scene.SceneResult):
     (rad), ``z`` (m + 1,) axial nodes (m), ``pressure`` and ``film`` (n, m + 1) (Pa, m),
     ``film_fraction`` (n, m + 1): the liquid fraction of the film (below 1 in a "jfo" cavity),
     ``displacement`` of the bore and ``displacement_shaft`` of the journal (n, m + 1) (m,
-    each positive where it opens the film; zero for a rigid body). Convergence:
-    ``iterations``, ``residual``, ``result``; ``converged`` is ``result == 0``."""
+    each positive where it opens the film; zero for a rigid body). ``force`` and ``moment``
+    are those of the film and, with rough surfaces, the asperities together (the load at
+    equilibrium); ``asperity_force`` (N, on the housing, absolute) the asperities' part,
+    ``asperity_share`` its magnitude over the load, ``asperity_pressure`` (n, m + 1) (Pa) their
+    Greenwood-Tripp pressure. Friction (N, resisting the surfaces' sliding, positive): the
+    shear on the journal over the film's area R dtheta dz (its torque over R_J),
+    ``friction_viscous`` from the film's shear (Patir and Cheng's
+    shear stress factors on rough surfaces) and ``friction_boundary`` from mu_b p_a;
+    ``friction_coefficient`` their sum over the load; ``film_parameter`` lambda = min_film /
+    sigma (inf for smooth surfaces). Convergence: ``iterations``, ``residual``, ``result``;
+    ``converged`` is ``result == 0``."""
 
     theta: jax.Array
     z: jax.Array
@@ -50,6 +61,13 @@ class FiniteJournalResult(_scene.SceneResult):
     supply_flow: jax.Array
     inlet_flow: jax.Array
     power_loss: jax.Array
+    asperity_pressure: jax.Array
+    asperity_force: jax.Array
+    asperity_share: jax.Array
+    friction_viscous: jax.Array
+    friction_boundary: jax.Array
+    friction_coefficient: jax.Array
+    film_parameter: jax.Array
     iterations: jax.Array
     residual: jax.Array
     result: jax.Array
@@ -65,19 +83,44 @@ def outputs(x, pr: Params, cfg: Config, stats):
     dU = pr.omega_B * R - pr.omega_J * RJ
     # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
     liquid = film2d.upwind(f["fraction"], pr.v)
-    poiseuille = (-0.5 * hx * dpdx) @ wz
-    couette = (liquid * eta * dU / hx) @ wz
     arc = R * dth
-    TB_p, TJ_p = R * arc * jnp.sum(poiseuille), RJ * arc * jnp.sum(poiseuille)
+    rough, p_a = pr.rough, f["p_asp"]
+    if rough is None:
+        poiseuille = (-0.5 * hx * dpdx) @ wz
+        TB_p = R * arc * jnp.sum(poiseuille)
+        TJ_p = RJ * arc * jnp.sum(poiseuille)
+        couette_B = couette_J = (liquid * eta * dU / hx) @ wz
+    else:
+        # Patir and Cheng (1979): the mean shear on each surface, the factors at H_c; the shear
+        # stress factor Phi_fs enters the journal's with -Vr, the bore's with +Vr
+        Hc, hc = rough.clipped(hx)
+        fs, fp = shear_stress_factors(Hc, rough.gamma)
+        ff = friction_factor(Hc)
+        poiseuille = (-0.5 * fp * hc * dpdx) @ wz
+        TB_p = R * arc * jnp.sum(poiseuille)
+        TJ_p = RJ * arc * jnp.sum(poiseuille)
+        couette_J = (liquid * eta * dU / hc * (ff - rough.Vr * fs)) @ wz
+        couette_B = (liquid * eta * dU / hc * (ff + rough.Vr * fs)) @ wz
+    # the asperities' friction mu_b p_a opposes the sliding on both surfaces (p_a on the nodes)
+    boundary = -jnp.sign(sliding(pr)) * (0.0 if rough is None else rough.mu_b) * arc * jnp.sum(p_a @ wz)
     # the pressure on each slice's deformed profile: its moment about the body's centre
     # (the viscoelastic torque of the long bearing, per slice; central differences in theta)
     central = lambda u: 0.5 * (jnp.roll(u, -1, axis=0) - jnp.roll(u, 1, axis=0))
     TvB, TvJ = (-R * jnp.sum(f["p_load"] * central(u), axis=0) @ wz for u in (f["uB"], f["uJ"]))
-    TB = TB_p - R * arc * jnp.sum(couette) + TvB
-    TJ = TJ_p + RJ * arc * jnp.sum(couette) + TvJ
-    power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / hx) @ wz) \
-        + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
-    leakage = film2d.end_outflow(f["p"], f["h"], z, R, eta)
+    TB_visc = TB_p - R * arc * jnp.sum(couette_B)
+    TJ_visc = TJ_p + RJ * arc * jnp.sum(couette_J)
+    TB = TB_visc - R * boundary + TvB
+    TJ = TJ_visc + RJ * boundary + TvJ
+    if rough is None:
+        power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / hx) @ wz) \
+            + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
+    else:   # the power the surfaces' friction takes (film shear and asperities), no body's hysteresis
+        power = -(pr.omega_B * (TB - TvB) + pr.omega_J * (TJ - TvJ))
+    leakage = film2d.end_outflow(f["p"], f["h"], z, R, eta, rough)
+    # friction on the journal's surface resisting its sliding (N): its shear over the film's
+    # area R dtheta dz, the torque's parts over R_J
+    resisting = -jnp.sign(sliding(pr)) / RJ
+    friction_viscous, friction_boundary = resisting * TJ_visc, resisting * RJ * boundary
     # the groove's net outflow: its interior cells, the ones held at the supply pressure; its
     # downstream flow into the land: every node of its column (the end nodes' half cells carry
     # Couette flow too)
@@ -86,7 +129,8 @@ def outputs(x, pr: Params, cfg: Config, stats):
     downstream = jnp.where(pr.v >= 0, qx, -jnp.roll(qx, 1, axis=0))
     # a circumferential groove feeds the land axially: all its outflow goes in
     inlet = jnp.where(pr.circumferential > 0, supply, jnp.sum(pr.groove * downstream * wz[None, :]))
-    F, M = film2d.resultants(f["p_load"], theta, z, R)
+    F, M = film2d.resultants(f["p_load"] + p_a, theta, z, R)
+    F_asp, _ = film2d.resultants(p_a, theta, z, R)
     rot = lambda a: rotation(pr.frame) @ a
     e = f["e"]
     h = f["h"]
@@ -103,4 +147,8 @@ def outputs(x, pr: Params, cfg: Config, stats):
         torque=TB, torque_shaft=TJ, torque_poiseuille=TB_p, torque_poiseuille_shaft=TJ_p,
         torque_viscoelastic=TvB, torque_viscoelastic_shaft=TvJ,
         side_leakage=leakage, supply_flow=supply, inlet_flow=inlet, power_loss=power,
+        asperity_pressure=p_a, asperity_force=-rot(F_asp), asperity_share=jnp.hypot(*F_asp) / pr.W,
+        friction_viscous=friction_viscous, friction_boundary=friction_boundary,
+        friction_coefficient=(friction_viscous + friction_boundary) / pr.W,
+        film_parameter=h[i, j] / (jnp.inf if rough is None else rough.sigma),
         iterations=stats.iterations, residual=stats.residual, result=stats.result)

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...._core import checks, scene as _scene
 from ....films import film2d, reynolds
+from ....films.roughness import Roughness
 from ..options import FiniteJournalOptions
 from ..setup import bodies_at, check_arguments
 from .film import Config, Params, as_unknowns, rotation, unknowns
@@ -23,9 +24,11 @@ GROOVES = ("fixed", "circumferential")
 def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None, omega_shaft=0.0,
           omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation="reynolds",
           supply_angle=math.pi, supply_pressure=0.0, supply_width=1.0, tilt=None, temperature=None, shift=None,
-          groove="fixed", options: FiniteJournalOptions = FiniteJournalOptions()):
+          groove="fixed", roughness: Roughness | None = None,
+          options: FiniteJournalOptions = FiniteJournalOptions()):
     """Checked arguments -> (:class:`Params` with a zero start, :class:`Config`); ``groove``
-    "fixed" (an axial groove at ``supply_angle``) or "circumferential"."""
+    "fixed" (an axial groove at ``supply_angle``) or "circumferential"; ``roughness`` a
+    :class:`~vjax.Roughness` (mixed lubrication) or None (smooth surfaces)."""
     checks.one_of("groove", groove, GROOVES)
     checks.instance("options", options, FiniteJournalOptions, "a vjax.FiniteJournalOptions (with length=)")
     check_arguments(R, radial_clearance, viscosity, load, omega_shaft=omega_shaft, omega_housing=omega_housing,
@@ -39,10 +42,16 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     if any(b is not None and b.axial == "3d" for b in (housing, shaft)) and options.spacing != "uniform":
         raise ValueError("a 3D layer (axial='3d') needs uniform axial nodes (its cosine modes): "
                          "FiniteJournalOptions(spacing='uniform')")
+    if roughness is not None:
+        checks.instance("roughness", roughness, Roughness, "a vjax.Roughness (or None: smooth surfaces)")
+        if housing is not None or shaft is not None:
+            raise ValueError("roughness: mixed lubrication is solved for rigid bodies (housing=None, shaft=None); "
+                             "with a deformable body the asperity pressure would load it too, which is not built yet")
     if tilt is not None:
         checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
             raise ValueError(f"tilt must be two angles (gamma_x, gamma_y) (rad), got shape {np.shape(tilt)}")
+        _check_tilt_fits(tilt, length, radial_clearance, roughness)
     n, m = options.n, options.m
     s = film2d.unit_nodes(m, options.spacing)     # z / (L/2)
     mask = np.zeros((n, m + 1))
@@ -64,14 +73,31 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
                  krylov=options.krylov and not rigid)
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-                 supply_pressure, mask, float(circumferential), s, housing, shaft, unknowns=unknowns(cfg),
-                 memory=memory)
+                 supply_pressure, mask, float(circumferential), s, housing, shaft, roughness,
+                 unknowns=unknowns(cfg), memory=memory)
     return pr, cfg
+
+
+def _check_tilt_fits(tilt, length, radial_clearance, roughness):
+    """Refuse a tilt that moves the journal's ends by a clearance or more: a smooth film
+    cannot carry that (the ends would cut through the bore); rough surfaces can (edge contact
+    on the asperities)."""
+    values = [checks.values(k, v) for k, v in (("tilt", tilt), ("length", length),
+                                                ("radial_clearance", radial_clearance))]
+    if roughness is not None or any(v is None for v in values):
+        return
+    gamma, L, c = values
+    ends = float(np.hypot(*np.asarray(gamma, float))) * float(L) / 2
+    if ends >= c:
+        raise ValueError(f"tilt={tuple(float(g) for g in np.asarray(gamma, float))} moves the journal's ends by {ends / c:.3g} "
+                         f"clearances: a smooth film cannot carry it (the ends would cut through the bore). The "
+                         f"largest tilt this clearance allows is |tilt| < 2 c / L = {2 * c / L:.3g} rad; with a "
+                         f"roughness (roughness=vjax.Roughness(...)) the asperities carry the edge contact")
 
 
 @partial(jax.jit, static_argnames=("unknowns", "memory"))
 def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-            supply_pressure, groove, circumferential, s, housing, shaft, *, unknowns, memory):
+            supply_pressure, groove, circumferential, s, housing, shaft, roughness, *, unknowns, memory):
     """Checked arguments -> :class:`Params` with a zero start, in one compiled program (eager,
     each of its operations would compile on a first call)."""
     dtype = jnp.result_type(float)
@@ -90,7 +116,7 @@ def _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omeg
                   # the pressure pattern is fixed in space: it moves at -omega relative to each body
                   op_B=_operator(housing, R, groove.shape, length, -omega_housing, memory),
                   op_J=_operator(shaft, R - radial_clearance, groove.shape, length, -omega_shaft, memory),
-                  compliance=f(1.0), smoothing=f(0.0), x0=jnp.zeros(unknowns + 2, dtype))
+                  compliance=f(1.0), smoothing=f(0.0), rough=roughness, x0=jnp.zeros(unknowns + 2, dtype))
 
 
 def _operator(body, R, shape, length, omega, memory):

@@ -11,7 +11,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from ...._core import solve as _solve
+from ...._core import checks, solve as _solve
 from .... import reference
 from ....bodies.operator import grid
 from ....films import film2d, reynolds
@@ -34,8 +34,8 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     :func:`linear_model`) or a dense LU of the Jacobian from jacfwd (n (m - 1) + 2 unknowns:
     up to a few thousand)."""
     def eqs(x, state):
-        r, hmin = equations(x, pr, cfg, relaxed, subcell)
-        return r, state, hmin > 0
+        r, film_margin = equations(x, pr, cfg, relaxed, subcell)
+        return r, state, film_margin > 0
 
     N = unknowns(cfg)
     cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
@@ -62,21 +62,31 @@ def _guess(pr: Params, cfg: Config):
     the load, at their correspondingly weighted attitude angle; the long bearing's pressure
     along theta times a parabola across the width, scaled to carry the load. With deformable
     bodies the journal moves with their rigid displacement under the load (the slices' first
-    mode, :func:`deformations`), so that the film keeps the rigid estimate's shape."""
+    mode, :func:`deformations`), so that the film keeps the rigid estimate's shape. With rough
+    surfaces the asperities' capacity adds to the film's (:func:`_asperity_capacity`): at low
+    speed they carry the load at an eccentricity past 1, along the line of centres."""
     c, R, L, eta = pr.c, pr.R, pr.L, pr.eta
-    eps = _solve.bisect(lambda e: _rigid_capacity(e, pr) - pr.W, jnp.asarray(1e-6, c.dtype),
-                        jnp.asarray(0.999, c.dtype), 50)
-    eps = jnp.minimum(eps, 0.95)
+    if pr.rough is None:
+        eps = _solve.bisect(lambda e: _rigid_capacity(e, pr) - pr.W, jnp.asarray(1e-6, c.dtype),
+                            jnp.asarray(0.999, c.dtype), 50)
+        share = jnp.zeros((), c.dtype)
+    else:
+        total = lambda e: _rigid_capacity(jnp.minimum(e, 0.999), pr) + _asperity_capacity(e, pr, cfg)  # noqa: E731
+        eps = _solve.bisect(lambda e: total(e) - pr.W, jnp.asarray(1e-6, c.dtype), jnp.asarray(1.5, c.dtype), 60)
+        share = jnp.clip(_asperity_capacity(eps, pr, cfg) / pr.W, 0.0, 1.0)
+    centre = jnp.where(share > 0.5, eps, jnp.minimum(eps, 0.95))     # where the journal is put
+    eps = jnp.minimum(eps, 0.95)                                       # the film's shape
     Ws, Wl = _rigid_capacity(eps, pr, parts=True)
     short = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 4 * eps)
     long = jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
-    phi = jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
+    # the asperities' force lies along the line of centres: their share turns the attitude to 0
+    phi = (1 - share) * jnp.sign(pr.v) * (Wl * short + Ws * long) / (Ws + Wl)
     # the load direction in the grid, and the film's minimum at phi ahead of it (behind for v < 0)
     a = jnp.arctan2(pr.load[1], pr.load[0]) + phi
     # the journal: c eps e^{i a} plus the bodies' rigid displacement under the load's first
     # mode (amplitude |symbol_1| W / (pi R L), along the film's minimum)
     s1 = pr.compliance * sum(op.plane_symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
-    moved = c * eps + s1 * pr.W / (jnp.pi * R * L)
+    moved = c * centre + s1 * pr.W / (jnp.pi * R * L)
     position = jnp.abs(moved) / c * jnp.exp(1j * (a - jnp.angle(moved)))
     n = cfg.n
     theta, _ = grid(n)
@@ -86,11 +96,19 @@ def _guess(pr: Params, cfg: Config):
          / (c**2 * (2 + eps**2) * (1 - eps * jnp.cos(t)) ** 2))
     p = jnp.maximum(p, 0.0)[:, None] * (1 - (2 * z / L) ** 2)[None, :]
     F, _ = film2d.resultants(film2d.with_ends(p), theta, 0.5 * L * pr.s, R)
-    p = p * pr.W / jnp.maximum(jnp.hypot(F[0], F[1]), jnp.finfo(c.dtype).tiny) / pr.p_ref
+    p = p * (1 - share) * pr.W / jnp.maximum(jnp.hypot(F[0], F[1]), jnp.finfo(c.dtype).tiny) / pr.p_ref
     # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
     # zone by one cell per iteration
     p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
     return jnp.concatenate([own_columns(p, cfg).ravel(), jnp.stack([position.real, position.imag])])
+
+
+def _asperity_capacity(eps, pr: Params, cfg: Config):
+    """The load (N) the asperities of an aligned rigid journal carry at eccentricity ratio eps
+    (any, > 1 where the nominal film closes): R dtheta L sum p_a(c (1 - eps cos theta)) cos theta."""
+    theta, _ = grid(cfg.n)
+    p_a = pr.rough.asperity_pressure(pr.c * (1 - eps * jnp.cos(theta)))
+    return pr.R * pr.L * (2 * jnp.pi / cfg.n) * jnp.sum(p_a * jnp.cos(theta))
 
 
 CONTINUATION_STAGES = 40   # at most this many Newton solves in the continuation of soft bodies
@@ -100,19 +118,22 @@ def _staged(pr: Params, t):
     """The problem at continuation parameter t in [0, 2] (as the long bearing's): t in [0, 1] the
     bodies' compliance ramped in (factor t) at M times the entrainment speed, M such that the
     rigid bearing would run at eps ~ 0.6 (a thick film, a mild coupling); t in [1, 2] the full
-    compliance, the speed M^(2 - t) down to the target's (geometric)."""
+    compliance, the speed M^(2 - t) down to the target's (geometric; the surfaces' speeds with
+    it, which set a rough film's shear flow)."""
     M = jnp.maximum(1.0, pr.W / _rigid_capacity(0.6, pr))
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
-    return dataclasses.replace(pr, v=pr.v * m, compliance=jnp.clip(t, 0.0, 1.0).astype(pr.v.dtype))
+    return dataclasses.replace(pr, v=pr.v * m, omega_B=pr.omega_B * m, omega_J=pr.omega_J * m,
+                               compliance=jnp.clip(t, 0.0, 1.0).astype(pr.v.dtype))
 
 
 def _steady(pr: Params, cfg: Config):
     """The steady unknowns and the Newton record: :func:`_film_steady` from ``pr.x0``; with
-    deformable bodies, if that fails (a soft body far from the rigid estimate, or a load the
-    rigid film could carry only at a far higher speed), adaptive continuation in the compliance
-    and the speed (:func:`_staged`, :func:`vjax._core.solve.continuation`), the first stage from the
-    rigid estimate: one Newton in one loop (compiled once), the stage parameter traced."""
-    if is_rigid(pr):
+    deformable bodies or rough surfaces, if that fails (a soft body far from the rigid estimate,
+    a load the rigid film could carry only at a far higher speed, a mixed film far from the
+    estimate's), adaptive continuation in the compliance and the speed (:func:`_staged`,
+    :func:`vjax._core.solve.continuation`), the first stage from the rigid estimate: one Newton
+    in one loop (compiled once), the stage parameter traced."""
+    if is_rigid(pr) and pr.rough is None:
         return _film_steady(pr, cfg)
     # the intermediate stages are only starts: their rupture on a face will do
     solve = lambda x, t: _film_steady(dataclasses.replace(_staged(pr, t), x0=x), cfg, t >= 2.0)     # noqa: E731
@@ -237,7 +258,7 @@ def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
 def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None,
                            omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic",
                            cavitation="reynolds", supply_angle=math.pi, supply_pressure=0.0, supply_width=1.0,
-                           tilt=None, temperature=None, shift=None, groove="fixed",
+                           tilt=None, temperature=None, shift=None, groove="fixed", roughness=None,
                            initial: FiniteJournalResult | None = None,
                            options: FiniteJournalOptions = FiniteJournalOptions(),
                            throw: bool = True) -> FiniteJournalResult:
@@ -249,12 +270,13 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
     plane-strain slices (:func:`deformations`). ``groove``: "fixed" (the axial groove at
     ``supply_angle``; a feed hole is one with ``supply_width`` = its diameter over L) or
     "circumferential" (round the mid-width, at ``supply_pressure``; ``supply_angle`` unused).
-    Returns :class:`FiniteJournalResult`."""
+    ``roughness``: a :class:`~vjax.Roughness` for mixed lubrication (rigid bodies), None for
+    smooth surfaces. Returns :class:`FiniteJournalResult`."""
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft,
                     omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, memory=memory,
                     cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
                     supply_width=supply_width, tilt=tilt, temperature=temperature, shift=shift, groove=groove,
-                    options=options)
+                    roughness=roughness, options=options)
     n, m = options.n, options.m
     # an aligned bearing's pressure is symmetric about mid-width (the grooves, the bodies and the
     # axial nodes are): the steady solve keeps the unknowns from mid-width to one end
@@ -270,9 +292,24 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
             R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
-            temperature=temperature, shift=shift, groove=groove, throw=False,
+            temperature=temperature, shift=shift, groove=groove, roughness=roughness, throw=False,
             options=dataclasses.replace(options, n=n // 2, m=m // 2))
         pr, start = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg)), "given_or_guess"
     sol = _run(pr, cfg, start)
-    _solve.report("journal_bearing (finite length)", sol, throw)
+    # the hint only for a failure it can explain (concrete values)
+    failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
+    _solve.report("journal_bearing (finite length)" + (_thin_film_hint(sol, pr) if failed else ""), sol, throw)
     return sol
+
+
+def _thin_film_hint(sol: FiniteJournalResult, pr: Params) -> str:
+    """A note for a smooth bearing's failure where its film nearly closes: rough surfaces would
+    let the asperities carry the load (mixed lubrication)."""
+    if pr.rough is not None or not checks.is_concrete((sol.min_film, pr.c)):
+        return ""
+    thin = float(sol.min_film) / float(pr.c)
+    if thin >= 0.05:
+        return ""
+    return (f" (the film closes to {thin:.2g} c where it stopped: with smooth surfaces it must carry the whole load; "
+            f"give the surfaces' roughness, roughness=vjax.Roughness(...), and the asperities carry their share: "
+            f"mixed lubrication)")

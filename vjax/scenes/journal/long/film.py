@@ -21,7 +21,6 @@ from ..setup import bodies_at, check_arguments
 
 
 GROOVES = ("line_of_centres", "fixed")
-
 KRYLOV_TOL = 1e-9    # relative residual of each Newton step's GMRES solve
 
 

@@ -20,7 +20,6 @@ from .outputs import JournalResult, outputs
 
 
 NESTED_MIN_N = 128   # "auto" cold starts on n >= this many elements begin on a 4x coarser grid,
-
 NESTED_MIN_N_RIGID = 512   # rigid ones from this many (direct: 19 steps at n = 256, 27 at 512, > 40 at 1024)
 
 
