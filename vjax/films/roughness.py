@@ -44,7 +44,7 @@ GAMMAS = (1 / 9, 1 / 6, 1 / 3, 1.0, 3.0, 6.0, 9.0)
 # Pressure flow factor (Patir and Cheng 1978, Eq. 23 and Table 1):
 #   phi_x = 1 - C exp(-r H)  for gamma <= 1,   phi_x = 1 + C H^-r  for gamma > 1,
 # fitted for H above H_min. gamma: (C, r, H_min). The isotropic row (0.90, 0.56) is quoted
-# the same by every later user; the other rows agree within 1-4 % with the smooth fits in gamma
+# the same by every later user; the other rows agree within 0.2-4.3 % with the smooth fits in gamma
 # that some codes use instead (C = 0.89679 - 0.26591 ln gamma, r = 0.43006 - 0.10828 gamma +
 # 0.23821 gamma^2 for gamma < 1; C = 0.1075 gamma - 0.10667, r = 1.5 for gamma > 1).
 PRESSURE_FLOW = {
