@@ -59,7 +59,7 @@ PRESSURE_FLOW = {
 
 # Shear flow factor of one rough surface (Patir and Cheng 1978, Eq. 26 and Table 2):
 #   Phi_s = A1 H^a1 exp(-a2 H + a3 H^2)  for H <= 5,   A2 exp(-0.25 H)  for H > 5.
-# gamma: (A1, a1, a2, a3, A2). Each row's two branches meet at H = 5 within 0.1-1.5 % (tested).
+# gamma: (A1, a1, a2, a3, A2). Each row's two branches meet at H = 5 within 0.1 % (tested).
 SHEAR_FLOW = {
     1 / 9: (2.046, 1.12, 0.78, 0.03, 1.856),
     1 / 6: (1.962, 1.08, 0.77, 0.03, 1.754),
@@ -100,7 +100,7 @@ def _laguerre(alpha: float, N: int):
 
 
 def _log_F_laguerre(n, H):
-    """log F_n(H) for H >= 0 (any H is finite). With s = H + t, F_n = e^{-H^2/2} (2 pi)^-1/2
+    """log F_n(H) for H >= 1 (any H >= 0 is finite). With s = H + t, F_n = e^{-H^2/2} (2 pi)^-1/2
     int_0^inf t^n e^{-H t - t^2/2} dt; t = u / lam puts the integrand's decay rate on the
     weight u^n e^-u (lam = (H + sqrt(H^2 + 4(n + 1)))/2: H for large H, where e^{-H t}
     dominates), leaving exp(u (1 - H/lam) - u^2/(2 lam^2)) smooth and slowly varying. In
@@ -114,11 +114,11 @@ def _log_F_laguerre(n, H):
 
 
 def _F_kummer(n, H):
-    """F_n(H) for H < 0 through Kummer's M (Abramowitz and Stegun 19.3.1, 19.12.3 with
+    """F_n(H) for -10 < H < 1 through Kummer's M (Abramowitz and Stegun 19.3.1, 19.12.3 with
     F_n(H) = Gamma(n+1) (2 pi)^-1/2 e^{-H^2/4} D_{-n-1}(H)):
     F_n = Gamma(n+1) 2^{-(n+1)/2} (2 pi)^-1/2 e^{-z} [sqrt(pi)/Gamma(1+n/2) M((n+1)/2, 1/2, z)
     - sqrt(2 pi) H/Gamma((n+1)/2) M(1+n/2, 3/2, z)], z = H^2/2. For H < 0 both terms are
-    positive series: no cancellation; 128 terms reach 1e-15 for z <= 50 (H >= -10)."""
+    positive series: no cancellation (0 <= H < 1: mild); 128 terms reach 1e-14 for z <= 50."""
     z = 0.5 * H * H
     logz = jnp.log(jnp.maximum(z, jnp.finfo(H.dtype).tiny))     # z = 0: the k = 0 term alone
     k = jnp.arange(_KUMMER_TERMS, dtype=H.dtype)
@@ -179,13 +179,14 @@ def asperity_integral(H, n: float = 2.5):
     F_n(H) = Gamma(n+1) (2 pi)^-1/2 exp(-H^2/4) D_{-n-1}(H), D the parabolic cylinder function.
 
     Method, by range (all in jnp, jit/vmap-able, fixed cost):
-      - H >= 0: Gauss-Laguerre quadrature (64 nodes, weight t^n e^-t: the endpoint power exact)
+      - H >= 1: Gauss-Laguerre quadrature (64 nodes, weight t^n e^-t: the endpoint power exact)
         after s = H + t and a scaling of t that follows the integrand's decay, in log space;
-      - -10 < H < 0: the Kummer-function series above (128 terms, all positive);
+      - -10 < H < 1: the Kummer-function series above (128 terms, all positive for H < 0);
       - H <= -10: the asymptotic series sum_k C(n, 2k) (2k-1)!! (-H)^{n-2k} (16 terms).
     Relative error against adaptive quadrature (tests/test_roughness.py): below 1e-13 for n =
-    5/2, 3/2, 1/2 on [-40, 12] and 1e-12 for n = -1/2; F underflows to 0 in float64 above
-    H ~ 38 (F_{5/2}(38) ~ 1e-316) and in float32 above H ~ 13, and grows as (-H)^n below.
+    5/2, 3/2, 1/2 and 2e-13 for n = -1/2 on [-40, 12] (1e-14 on [0, 6]); F underflows to 0 in
+    float64 above H ~ 37.5 (F_{5/2}(37) ~ 2e-303) and in float32 above H ~ 12.5, and grows as
+    (-H)^n below.
 
     Derivatives (any order) from dF_n/dH = -n F_{n-1} (exact, a custom JVP): finite
     everywhere, 0 where F has underflowed.
