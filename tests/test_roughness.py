@@ -226,6 +226,17 @@ def test_roughness_film_terms_and_clip():
     assert np.isclose(reference_case(clip=1.0).poiseuille(0.3e-6), (1 - 0.9 * math.exp(-0.56)) * 1e-18, rtol=1e-13)
 
 
+def test_cross_flow_factor():
+    """phi_z is phi_x of the transposed pattern (gamma -> 1/gamma)."""
+    h = 1.7e-6
+    along = Roughness(1e-6, 3e9, gamma=3.0)
+    Hc = 1.7
+    assert np.isclose(along.poiseuille(h), (1 + 0.225 * Hc ** -1.5) * h ** 3, rtol=1e-13)
+    assert np.isclose(along.poiseuille_across(h), (1 - 1.18 * math.exp(-0.42 * Hc)) * h ** 3, rtol=1e-13)
+    iso = Roughness(1e-6, 3e9)
+    assert np.isclose(iso.poiseuille_across(h), iso.poiseuille(h), rtol=1e-15)
+
+
 def test_smooth_limit():
     """sigma -> 0: every film term becomes the smooth film's."""
     rough = reference_case(sigma=1e-12)

@@ -370,7 +370,7 @@ class Roughness:
         checks.positive("sigma_over_beta", self.sigma_over_beta)
         checks.nonnegative("mu_b", self.mu_b)
         vr = checks.values("Vr", self.Vr)
-        if vr is not None and not np.all(np.abs(vr) <= 1.0):
+        if vr is not None and not np.all(np.abs(vr) <= 1.0 + 1e-12):
             raise ValueError(f"Vr = (sigma_1^2 - sigma_2^2)/sigma^2 must lie in [-1, 1], got {self.Vr!r}")
         if isinstance(self.gamma, (int, float)):     # PyTree rebuilds pass placeholders
             _row(PRESSURE_FLOW, self.gamma, "the flow factors")
