@@ -59,7 +59,9 @@ rest is Couette; the Reynolds cavity is taken as full of lubricant, as in Raimon
 -omega times a viscoelastic torque is the body's hysteretic dissipation. Flows (m^3/s):
 ``side_leakage`` out of both ends, ``supply_flow`` the groove's net outflow, ``inlet_flow``
 the flow the groove sends downstream into the land (Raimondi and Boyd's Q). ``power_loss``
-(W): the viscous dissipation in the film; with the bodies' hysteresis it balances the power
+(W): the viscous dissipation in the film (with rough surfaces: the conductances' and the
+Couette shear's factors, and the asperities' friction times the sliding speed, ``roughness=``
+below); with the bodies' hysteresis it balances the power
 put in, -omega_B torque - omega_J torque_shaft + p_s supply_flow = power_loss - omega_B
 torque_viscoelastic - omega_J torque_viscoelastic_shaft, up to the pressure energy
 sum p_i w_i of the flow let out within the rupture's cells (the rupture located within its

@@ -111,11 +111,13 @@ def outputs(x, pr: Params, cfg: Config, stats):
     TJ_visc = TJ_p + RJ * arc * jnp.sum(couette_J)
     TB = TB_visc - R * boundary + TvB
     TJ = TJ_visc + RJ * boundary + TvJ
-    if rough is None:
-        power = arc * jnp.sum((hx**3 * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / hx) @ wz) \
-            + arc * jnp.sum(f["hz"] ** 3 * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :])
-    else:   # the power the surfaces' friction takes (film shear and asperities), no body's hysteresis
-        power = -(pr.omega_B * (TB - TvB) + pr.omega_J * (TJ - TvJ))
+    # the film's dissipation (Poiseuille and Couette); with rough surfaces the conductances'
+    # gap terms and the Couette shear's mean factor phi_f (the two surfaces' Phi_fs cancel),
+    # plus the asperities' friction mu_b p_a times the sliding speed
+    couette_gap = hx if rough is None else hc / ff
+    power = arc * jnp.sum((f["gx"] * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / couette_gap) @ wz) \
+        + arc * jnp.sum(f["gz"] * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :]) \
+        + jnp.abs(boundary * dU)
     leakage = film2d.end_outflow(f["p"], f["h"], z, R, eta, rough)
     # friction on the journal's surface resisting its sliding (N): its shear over the film's
     # area R dtheta dz, the torque's parts over R_J
@@ -150,5 +152,5 @@ def outputs(x, pr: Params, cfg: Config, stats):
         asperity_pressure=p_a, asperity_force=-rot(F_asp), asperity_share=jnp.hypot(*F_asp) / pr.W,
         friction_viscous=friction_viscous, friction_boundary=friction_boundary,
         friction_coefficient=(friction_viscous + friction_boundary) / pr.W,
-        film_parameter=h[i, j] / (jnp.inf if rough is None else rough.sigma),
+        film_parameter=jnp.full((), jnp.inf, h.dtype) if rough is None else h[i, j] / rough.sigma,
         iterations=stats.iterations, residual=stats.residual, result=stats.result)

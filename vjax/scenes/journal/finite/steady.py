@@ -10,6 +10,7 @@ from functools import partial
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from ...._core import checks, solve as _solve
 from .... import reference
@@ -305,11 +306,15 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
 def _thin_film_hint(sol: FiniteJournalResult, pr: Params) -> str:
     """A note for a smooth bearing's failure where its film nearly closes: rough surfaces would
     let the asperities carry the load (mixed lubrication)."""
-    if pr.rough is not None or not checks.is_concrete((sol.min_film, pr.c)):
+    if pr.rough is not None or not checks.is_concrete((pr.W, pr.v, pr.eta, pr.c)):
         return ""
-    thin = float(sol.min_film) / float(pr.c)
-    if thin >= 0.05:
+    # the film the rigid estimate needs to carry the load: 1 - eps where its capacity is W
+    gaps = np.logspace(-6, 0, 121)
+    capacity = np.asarray(_rigid_capacity(jnp.asarray(1 - gaps[:-1], pr.c.dtype), pr))
+    short = capacity < float(pr.W)
+    thin = gaps[np.argmax(short)]
+    if not short.any() or thin >= 0.05:
         return ""
-    return (f" (the film closes to {thin:.2g} c where it stopped: with smooth surfaces it must carry the whole load; "
+    return (f" (a film of ~{thin:.2g} c would carry this load: with smooth surfaces it must carry all of it; "
             f"give the surfaces' roughness, roughness=vjax.Roughness(...), and the asperities carry their share: "
             f"mixed lubrication)")

@@ -1,0 +1,138 @@
+"""Mixed lubrication in the finite journal bearing (issue 43): its limits, derivatives, stiffness
+and refusals. The bearing is the issue's: journal radius 25 mm in a bore of 25.05 mm, c = 50 um,
+L/D = 1, eta = 0.03 Pa s, W = 2 kN, no groove (the film periodic, ambient at both ends),
+Reynolds cavitation; a smooth steel journal (210 GPa, 0.3) in a rough polymer bush (3 GPa,
+0.4), sigma = 1 um, eta_s beta sigma = 0.05, sigma/beta = 0.005, mu_b = 0.1.
+The comparison with an independent peer computation of the same model is in test_mixed_peer.py."""
+import dataclasses
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+import vjax
+
+R, C, ETA, W = 25.05e-3, 50e-6, 0.03, 2000.0
+L = 2 * R
+ROUGH = vjax.Roughness.from_surfaces(0.0, 1e-6, 210e9, 0.3, 3e9, 0.4)
+OPT = vjax.FiniteJournalOptions(n=32, m=16)
+BEARING = dict(length=L, supply_angle=None, options=OPT)
+
+
+def solve(omega, roughness=ROUGH, **kw):
+    return vjax.journal_bearing(R, C, ETA, W, omega_shaft=omega, roughness=roughness, **{**BEARING, **kw})
+
+
+def test_smooth_limit_is_the_full_film():
+    """sigma -> 0: the flow factors -> 1, the expected gap -> h, no asperity pressure: today's
+    smooth bearing to 1e-8 (the power by its own definition: the drive's, to 1e-6)."""
+    smooth = solve(30.0, roughness=None)
+    tiny = solve(30.0, roughness=dataclasses.replace(ROUGH, sigma=1e-12))
+    for name in ("eccentricity", "attitude_angle", "torque_shaft", "torque", "side_leakage", "max_pressure",
+                 "friction_coefficient", "min_film"):
+        a, b = float(getattr(tiny, name)), float(getattr(smooth, name))
+        assert abs(a - b) <= 1e-8 * abs(b), (name, a, b)
+    assert np.max(np.abs(tiny.pressure - smooth.pressure)) <= 1e-8 * float(smooth.max_pressure)
+    assert float(tiny.asperity_share) == 0.0 and float(smooth.asperity_share) == 0.0
+    assert float(tiny.power_loss) == pytest.approx(float(smooth.power_loss), rel=1e-6)
+    assert float(smooth.film_parameter) == np.inf
+
+
+def test_boundary_limit_is_dry_sliding_with_the_wrap_factor():
+    """omega -> 0: the asperities carry the load and the friction coefficient tends to mu_b
+    times the contact arc's wrap factor, int p_a dA / |int p_a n dA| (computed here from the
+    asperity pressure map on the trapezoidal grid)."""
+    r = solve(1e-4)
+    assert r.converged and float(r.asperity_share) > 0.999
+    theta, z, p_a = np.asarray(r.theta), np.asarray(r.z), np.asarray(r.asperity_pressure)
+    w = np.diff(z)
+    wz = 0.5 * (np.concatenate([[0.0], w]) + np.concatenate([w, [0.0]]))
+    dA = R * (2 * np.pi / theta.size) * wz[None, :]
+    wrap = np.sum(p_a * dA) / np.hypot(np.sum(p_a * np.cos(theta)[:, None] * dA),
+                                       np.sum(p_a * np.sin(theta)[:, None] * dA))
+    assert 1.0 < wrap < 1.02
+    assert float(r.friction_coefficient) == pytest.approx(float(ROUGH.mu_b) * wrap, rel=2e-3)
+    # the asperities' force balances the load: the journal sits past the clearance
+    assert float(r.eccentricity) > 1.0 and float(r.film_parameter) < 0
+
+
+def test_stribeck_sweep_crosses_lift_off():
+    """A warm-started sweep from boundary to full film: every point converges, the asperity
+    share falls with speed from ~1 to 0, friction has its Stribeck minimum inside the sweep,
+    above the lift-off speed (1 % share)."""
+    curve = vjax.stribeck_curve(R, C, ETA, W, np.logspace(-3, 2, 11), length=L, roughness=ROUGH,
+                                supply_angle=None, options=OPT)
+    assert curve.converged.all(), curve.result
+    assert curve.asperity_share[0] > 0.99 and curve.asperity_share[-1] < 1e-6
+    assert np.all(np.diff(curve.asperity_share) <= 1e-9)
+    assert curve.lift_off_speed is not None and curve.minimum_speed is not None
+    assert curve.speed[0] < curve.lift_off_speed < curve.minimum_speed < curve.speed[-1]
+    assert curve.friction_coefficient[0] == pytest.approx(0.1, rel=0.02)
+    assert np.all(curve.hersey == pytest.approx(ETA * curve.speed / (W / (L * 2 * R))))
+
+
+def test_derivatives_in_the_mixed_regime():
+    """d(friction coefficient, eccentricity) by implicit differentiation, with respect to sigma,
+    mu_b, the speed and the viscosity, against central differences, at a point where the
+    asperities carry ~5 % of the load."""
+    opt = dataclasses.replace(OPT, tol=1e-12)
+    start = solve(1.78, options=opt)
+    assert 0.01 < float(start.asperity_share) < 0.2
+
+    def outputs(sigma, mu_b, omega, eta):
+        r = vjax.journal_bearing(R, C, eta, W, omega_shaft=omega, initial=start,
+                                 roughness=dataclasses.replace(ROUGH, sigma=sigma, mu_b=mu_b),
+                                 **{**BEARING, "options": opt})
+        return jnp.stack([r.friction_coefficient, r.eccentricity])
+
+    x = (1e-6, 0.1, 1.78, ETA)
+    J = jax.jacfwd(outputs, argnums=(0, 1, 2, 3))(*x)
+    for k, step in enumerate((1e-10, 1e-5, 1e-4, 3e-6)):
+        up, down = list(x), list(x)
+        up[k] += step
+        down[k] -= step
+        fd = (np.asarray(outputs(*up)) - np.asarray(outputs(*down))) / (2 * step)
+        np.testing.assert_allclose(np.asarray(J[k]), fd, rtol=1e-6, atol=1e-9 * np.max(np.abs(fd)))
+
+
+def test_mixed_stiffness_is_the_static_stiffness():
+    """K at zero whirl, with the asperities' stiffness, equals the inverse of d(journal
+    position)/d(load vector) of the steady solves (forward-mode through the implicit root)."""
+    start = solve(1.78)
+    co = vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=1.78, roughness=ROUGH, initial=start,
+                                   **BEARING)
+
+    def position(load):
+        return vjax.journal_bearing(R, C, ETA, load, omega_shaft=1.78, roughness=ROUGH, initial=start,
+                                    **BEARING).position
+
+    compliance = jax.jacfwd(position)(jnp.array([0.0, -W]))
+    # dF_film+asperities = -K dx, the load balances it: d position / d load = K^-1
+    np.testing.assert_allclose(np.asarray(co.stiffness[0]), np.linalg.inv(np.asarray(compliance)), rtol=1e-5)
+
+
+def test_tilt_beyond_the_clearance():
+    """Smooth surfaces: a tilt that moves the journal's ends by 5 clearances is refused before
+    any work, naming the largest the clearance allows (2 c / L). Rough: edge contact (ends moved
+    by 1.5 clearances), solved."""
+    with pytest.raises(ValueError, match=r"5 clearances.*2 c / L = 0.002 rad"):
+        vjax.journal_bearing(R, C, ETA, W, omega_shaft=100.0, length=0.05, tilt=(0.01, 0.0), options=OPT)
+    r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=100.0, length=0.05, tilt=(0.003, 0.0), roughness=ROUGH,
+                             options=OPT)
+    assert r.converged and float(r.film_parameter) < 0 and float(r.asperity_share) > 0
+    assert np.allclose(np.asarray(r.force), [0.0, -W], atol=1e-6 * W)
+    assert abs(float(r.moment[1])) > 0     # the edges' contact makes a moment the shaft carries
+
+
+def test_a_closing_smooth_film_says_a_roughness_would_carry_it():
+    """Without a roughness the thin-film failure message stays, and names the roughness."""
+    with pytest.raises(vjax.ConvergenceError, match="roughness=vjax.Roughness"):
+        solve(0.01, roughness=None)
+
+
+def test_roughness_refused_where_it_is_not_built():
+    with pytest.raises(ValueError, match="roughness: mixed lubrication is solved in the finite bearing"):
+        vjax.journal_bearing(R, C, ETA, W, omega_shaft=1.0, roughness=ROUGH)
+    with pytest.raises(ValueError, match="roughness: .*rigid bodies"):
+        solve(1.0, housing=vjax.liner(vjax.Material.sls(1e9, 3e9, 0.01, 0.4), 2e-3))
