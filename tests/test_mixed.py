@@ -131,8 +131,31 @@ def test_a_closing_smooth_film_says_a_roughness_would_carry_it():
         solve(0.01, roughness=None)
 
 
+LINER = vjax.liner(vjax.Material.sls(1.5e9, 3e9, 0.01, 0.4), 2e-3)     # a 2 mm polymer liner (Pa, Pa, s)
+
+
+def test_a_lined_bearing_from_boundary_to_full_film():
+    """The asperity pressure loads the liner with the film's: with sigma -> 0 the lined mixed
+    bearing is the lined smooth one (to 1e-8); at a barely turning journal the asperities carry
+    nearly all the load over a wider arc than on a rigid bore (the liner spreads the contact);
+    the forces balance the load at every point."""
+    smooth = solve(30.0, roughness=None, housing=LINER)
+    tiny = solve(30.0, roughness=dataclasses.replace(ROUGH, sigma=1e-12), housing=LINER)
+    for name in ("eccentricity", "attitude_angle", "torque_shaft", "max_pressure"):
+        a, b = float(getattr(tiny, name)), float(getattr(smooth, name))
+        assert abs(a - b) <= 1e-8 * abs(b), (name, a, b)
+    slow_lined, slow_rigid = solve(1e-3, housing=LINER), solve(1e-3)
+    assert float(slow_lined.asperity_share) > 0.98
+    np.testing.assert_allclose(np.asarray(slow_lined.force), [0.0, -W], atol=1e-8 * W)
+    arc = lambda r: np.mean(np.asarray(r.asperity_pressure) > 1e-3 * float(np.max(r.asperity_pressure)))  # noqa: E731
+    assert arc(slow_lined) > 1.5 * arc(slow_rigid)
+    assert float(slow_lined.displacement.max()) > float(ROUGH.sigma)     # the liner yields by more than sigma
+
+
 def test_roughness_refused_where_it_is_not_built():
     with pytest.raises(ValueError, match="roughness: mixed lubrication is solved in the finite bearing"):
         vjax.journal_bearing(R, C, ETA, W, omega_shaft=1.0, roughness=ROUGH)
-    with pytest.raises(ValueError, match="roughness: .*rigid bodies"):
-        solve(1.0, housing=vjax.liner(vjax.Material.sls(1e9, 3e9, 0.01, 0.4), 2e-3))
+    with pytest.raises(ValueError, match="linear_solver='krylov'"):
+        solve(1.0, housing=LINER, options=dataclasses.replace(OPT, linear_solver="krylov"))
+    with pytest.raises(ValueError, match="dynamic coefficients of a mixed film on a deformable body"):
+        vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=30.0, roughness=ROUGH, housing=LINER, **BEARING)

@@ -208,6 +208,9 @@ def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies, w
     recovered for the half-Sommerfeld film (whose result holds the clipped pressure) by one more
     solve. C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
     # "jfo": the universal unknown, the film fraction - 1 in the cavity
+    if pr.rough is not None and not is_rigid(pr):
+        raise ValueError("roughness with a deformable body: the dynamic coefficients of a mixed film on a "
+                         "deformable body are not built yet (rigid bodies: housing=None, shaft=None)")
     x0 = as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr, cfg)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)

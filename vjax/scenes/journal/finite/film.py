@@ -71,6 +71,14 @@ def unknowns(cfg: Config):
     return cfg.n * columns(cfg)
 
 
+def asperity_unknowns(pr: Params, cfg: Config) -> int:
+    """How many asperity-pressure unknowns follow the position: one per node, n (m + 1), when
+    rough surfaces meet a deformable body (the asperity pressure loads the body, whose
+    deformation sets the gap the asperities see: an implicit pair, solved with the film); none
+    otherwise (rigid bodies: the asperity pressure follows the film explicitly)."""
+    return cfg.n * (cfg.m + 1) if pr.rough is not None and not is_rigid(pr) else 0
+
+
 def columns(cfg: Config):
     """Axial columns of the cell unknowns: the m - 1 interior nodes; in a half-width solve
     (``cfg.half``) the m / 2 from mid-width to the last interior one."""
@@ -95,11 +103,15 @@ def rotation(frame):
     return jnp.array([[c, -s], [s, c]])
 
 
-def as_unknowns(scaled, position, pr: Params, cfg: Config):
+def as_unknowns(scaled, position, pr: Params, cfg: Config, asperity=None):
     """Unknowns [scaled pressure (the universal unknown for "jfo") at the interior nodes (those
-    of the unknowns, :func:`columns`), journal centre / c in grid axes] from ``scaled`` (n, m + 1)
-    and an absolute ``position`` (m)."""
-    return jnp.concatenate([own_columns(scaled[:, 1:-1], cfg).ravel(), rotation(pr.frame).T @ position / pr.c])
+    of the unknowns, :func:`columns`), journal centre / c in grid axes, and the asperity
+    pressure / p_ref if it is an unknown (:func:`asperity_unknowns`)] from ``scaled`` (n, m + 1),
+    an absolute ``position`` (m) and the ``asperity`` pressure (n, m + 1) (Pa)."""
+    x = jnp.concatenate([own_columns(scaled[:, 1:-1], cfg).ravel(), rotation(pr.frame).T @ position / pr.c])
+    if asperity_unknowns(pr, cfg):
+        x = jnp.concatenate([x, asperity.ravel() / pr.p_ref])
+    return x
 
 
 def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None):
@@ -119,20 +131,24 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     jfo = cfg.cavitation == "jfo"
     p, fraction, p_load = loading(pz, pr, cfg, relaxed)
     e = pr.c * x[N:N + 2]
+    implicit = asperity_unknowns(pr, cfg) > 0       # the asperity pressure an unknown (x's tail)
+    p_asp = x[N + 2:].reshape(n, m + 1) * pr.p_ref if implicit else None
     hdot = jnp.zeros((n, m + 1), x.dtype)
     if motion is not None:
         e = e + motion[:2]
         hdot = hdot - motion[2] * jnp.cos(theta)[:, None] - motion[3] * jnp.sin(theta)[:, None]
     if deformation is None:
-        uB, uJ = deformations(p_load, pr, z)
+        uB, uJ = deformations(p_load if p_asp is None else p_load + p_asp, pr, z)
     else:
         uB, uJ = deformation[0], jnp.zeros_like(deformation[0])
         hdot = hdot + deformation[1]
     h = film2d.film(theta, z, pr.c, e, pr.tilt) + uB + uJ
     f = film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v, fraction if jfo else None, pr.rough, sliding(pr))
-    p_asp = jnp.zeros_like(h) if pr.rough is None else pr.rough.asperity_pressure(h)
+    gap_pressure = jnp.zeros_like(h) if pr.rough is None else pr.rough.asperity_pressure(h)
     return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
-                fraction=fraction, p_asp=p_asp)
+                fraction=fraction, p_asp=gap_pressure if p_asp is None else p_asp,
+                # the asperity unknowns' equations: the pressure the gap gives, over p_ref
+                asperity_residual=None if p_asp is None else ((p_asp - gap_pressure) / pr.p_ref).ravel())
 
 
 def sliding(pr: Params):
@@ -181,7 +197,8 @@ def deformations(p_load, pr: Params, z):
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None,
                   subcell=1.0):
-    """Scaled cell equations (n (m - 1),), the force of the film and the asperities on the
+    """Scaled cell equations (n (m - 1),; followed by the asperity unknowns' equations, n (m + 1),
+    when there are some, :func:`asperity_unknowns`), the force of the film and the asperities on the
     journal (N, grid axes) and the film's margin (m, positive where the model holds,
     :func:`margin`); the
     arguments those of :func:`fields`, and ``rate`` (n (m - 1),) (1/s): the rate of the
@@ -205,7 +222,10 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
         sommerfeld = film2d.cell_equations(f["pz"], out, scale, "sommerfeld", pr.groove[:, 1:-1], pr.ps / pr.p_ref)
         r = jnp.where(relaxed, sommerfeld, r)
     F, _ = film2d.resultants(f["p_load"] + f["p_asp"], f["theta"], f["z"], pr.R)
-    return own_columns(r, cfg).ravel(), F, margin(f["h"], pr)
+    r = own_columns(r, cfg).ravel()
+    if f["asperity_residual"] is not None:
+        r = jnp.concatenate([r, f["asperity_residual"]])
+    return r, F, margin(f["h"], pr)
 
 
 def margin(h, pr: Params):
@@ -295,5 +315,8 @@ def is_rigid(pr: Params):
 
 def solved_by_linear_model(pr: Params, cfg: Config):
     """Whether Newton's steps and the derivatives use :func:`linear_model` (block solve or
-    GMRES), not a dense LU of the AD Jacobian (deformable bodies on small grids)."""
+    GMRES), not a dense LU of the AD Jacobian (deformable bodies on small grids, and with
+    rough surfaces on any grid)."""
+    if asperity_unknowns(pr, cfg):
+        return False
     return is_rigid(pr) or cfg.krylov or columns(cfg) > EXACT_WIDTH

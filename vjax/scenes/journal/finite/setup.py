@@ -44,9 +44,9 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
                          "FiniteJournalOptions(spacing='uniform')")
     if roughness is not None:
         checks.instance("roughness", roughness, Roughness, "a vjax.Roughness (or None: smooth surfaces)")
-        if housing is not None or shaft is not None:
-            raise ValueError("roughness: mixed lubrication is solved for rigid bodies (housing=None, shaft=None); "
-                             "with a deformable body the asperity pressure would load it too, which is not built yet")
+        if (housing is not None or shaft is not None) and options.linear_solver == "krylov":
+            raise ValueError("linear_solver='krylov': rough surfaces on a deformable body are solved with a dense "
+                             "LU (the asperity pressure an unknown per node); use 'auto' or 'dense'")
     if tilt is not None:
         checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
@@ -71,7 +71,7 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
     rigid = housing is None and shaft is None
     cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
-                 krylov=options.krylov and not rigid)
+                 krylov=options.krylov and not rigid and roughness is None)
     pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
                  supply_pressure, mask, float(circumferential), s, housing, shaft, roughness,
                  unknowns=unknowns(cfg), memory=memory)
@@ -129,10 +129,12 @@ def _operator(body, R, shape, length, omega, memory):
     return body.operator(R, shape[0], omega, memory)
 
 
-@partial(jax.jit, static_argnums=(3,))
-def start_from(pressure, position, pr: Params, cfg: Config):
-    """Unknowns from a solution (:func:`as_unknowns`), as a start that is not differentiated."""
-    return jax.lax.stop_gradient(as_unknowns(pressure / pr.p_ref, position, pr, cfg)).astype(pr.x0.dtype)
+@partial(jax.jit, static_argnums=(2,))
+def start_from(solution, pr: Params, cfg: Config):
+    """Unknowns from a :class:`FiniteJournalResult` (:func:`as_unknowns`), as a start that is not
+    differentiated."""
+    x = as_unknowns(solution.pressure / pr.p_ref, solution.position, pr, cfg, solution.asperity_pressure)
+    return jax.lax.stop_gradient(x).astype(pr.x0.dtype)
 
 
 def check_supported(length, groove, cavitation):

@@ -17,7 +17,8 @@ from .... import reference
 from ....bodies.operator import grid
 from ....films import film2d, reynolds
 from ..options import FiniteJournalOptions
-from .film import (Config, Params, as_unknowns, equations, fields, is_rigid, linear_model, own_columns,
+from .film import (Config, Params, as_unknowns, asperity_unknowns, equations, fields, is_rigid, linear_model,
+                   own_columns,
                    solved_by_linear_model, unknowns)
 from .outputs import FiniteJournalResult, outputs
 from .setup import setup, start_from
@@ -39,7 +40,8 @@ def _newton(x0, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
         return r, state, film_margin > 0
 
     N = unknowns(cfg)
-    cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    cap = jnp.concatenate([jnp.full(N, jnp.inf), jnp.full(2, 0.3), jnp.full(x0.shape[0] - N - 2, jnp.inf)])
+    cap = cap.astype(x0.dtype)
     linear_solve = (lambda x, state, r: linear_model(x, pr, cfg, relaxed, subcell)[0](-r)) \
         if solved_by_linear_model(pr, cfg) else None
     x, _, stats = _solve.newton(eqs, x0, None, tol=cfg.tol, max_iter=cfg.max_iter, max_step=cap,
@@ -101,7 +103,11 @@ def _guess(pr: Params, cfg: Config):
     # a small positive offset: with p = 0 exactly, the FB Newton step grows the pressurized
     # zone by one cell per iteration
     p = jnp.where(pr.groove[:, 1:-1] > 0, pr.ps / pr.p_ref, p + 0.1)
-    return jnp.concatenate([own_columns(p, cfg).ravel(), jnp.stack([position.real, position.imag])])
+    x = jnp.concatenate([own_columns(p, cfg).ravel(), jnp.stack([position.real, position.imag])])
+    if asperity_unknowns(pr, cfg):      # the asperities at the rigid film of that position
+        rigid = film2d.film(theta, 0.5 * L * pr.s, c, c * x[-2:], pr.tilt)
+        x = jnp.concatenate([x, pr.rough.asperity_pressure(rigid).ravel() / pr.p_ref])
+    return x
 
 
 def _asperity_capacity(eps, pr: Params, cfg: Config):
@@ -248,12 +254,17 @@ def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
     """Unknowns on this grid from a solution on the 2x coarser one (the coarse nodes are the
     even ones here): the new nodes get the mean of their two neighbours, in theta, then in z;
     NaN where the coarse solve failed (then the rigid estimate starts, :func:`solve`)."""
-    u = coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0)      # "jfo": the universal unknown
+    u = _doubled(coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0))      # "jfo": the universal unknown
+    x0 = as_unknowns(u, coarse.position, pr, cfg, _doubled(coarse.asperity_pressure))
+    return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
+
+
+def _doubled(u):
+    """Values on the nodes of the 2x finer grid (n, m + 1) -> (2 n, 2 m + 1): the new nodes the
+    mean of their two neighbours, in theta, then in z."""
     u = jnp.stack([u, 0.5 * (u + jnp.roll(u, -1, axis=0))], axis=1).reshape(-1, u.shape[1])
     mid = 0.5 * (u[:, :-1] + u[:, 1:])
-    u = jnp.concatenate([jnp.stack([u[:, :-1], mid], axis=2).reshape(u.shape[0], -1), u[:, -1:]], axis=1)
-    x0 = as_unknowns(u, coarse.position, pr, cfg)
-    return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
+    return jnp.concatenate([jnp.stack([u[:, :-1], mid], axis=2).reshape(u.shape[0], -1), u[:, -1:]], axis=1)
 
 
 def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=None,
@@ -282,12 +293,12 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
     # an aligned bearing's pressure is symmetric about mid-width (the grooves, the bodies and the
     # axial nodes are): the steady solve keeps the unknowns from mid-width to one end
     cfg = dataclasses.replace(cfg, half=tilt is None)
-    pr = dataclasses.replace(pr, x0=jnp.zeros(unknowns(cfg) + 2, pr.x0.dtype))
+    pr = dataclasses.replace(pr, x0=jnp.zeros(unknowns(cfg) + 2 + asperity_unknowns(pr, cfg), pr.x0.dtype))
     start = "guess"
     if initial is not None:
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
             raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
-        pr, start = dataclasses.replace(pr, x0=start_from(initial.pressure, initial.position, pr, cfg)), "given"
+        pr, start = dataclasses.replace(pr, x0=start_from(initial, pr, cfg)), "given"
     elif _nests(options):
         coarse = finite_journal_bearing(
             R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
