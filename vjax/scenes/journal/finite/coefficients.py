@@ -193,11 +193,18 @@ def tilt_coefficients(R, radial_clearance, viscosity, load, length, *, whirl=Non
 def _solved_coefficients(caller, R, radial_clearance, viscosity, load, length, whirl, tilt, initial, throw, kw):
     """The steady solve of the keyword arguments ``kw`` of :func:`finite_journal_bearing` and its
     :func:`coefficients` (steady, Z, K, C); a failed whirl solve reported under ``caller``."""
-    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, **kw)
+    _check_linearizable(pr)
+    steady = finite_journal_bearing(R, radial_clearance, viscosity, load, length, initial=initial, throw=throw, **kw)
     Z, K, C, stats = coefficients(steady, pr, cfg, _bodies(R, radial_clearance, kw), whirl, tilt)
     _solve.report(f"{caller} (the finite bearing's whirl solves)", stats, throw)
     return steady, Z, K, C
+
+
+def _check_linearizable(pr: Params):
+    if pr.rough is not None and not is_rigid(pr):
+        raise ValueError("roughness with a deformable body: the dynamic coefficients of a mixed film on a "
+                         "deformable body are not built yet (rigid bodies: housing=None, shaft=None)")
 
 
 def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
@@ -208,9 +215,7 @@ def coefficients(steady: FiniteJournalResult, pr: Params, cfg: Config, bodies, w
     recovered for the half-Sommerfeld film (whose result holds the clipped pressure) by one more
     solve. C = Im Z / Omega, at Omega = 0 its limit d(Im Z)/dOmega."""
     # "jfo": the universal unknown, the film fraction - 1 in the cavity
-    if pr.rough is not None and not is_rigid(pr):
-        raise ValueError("roughness with a deformable body: the dynamic coefficients of a mixed film on a "
-                         "deformable body are not built yet (rigid bodies: housing=None, shaft=None)")
+    _check_linearizable(pr)
     x0 = as_unknowns(steady.pressure / pr.p_ref + (steady.film_fraction - 1.0), steady.position, pr, cfg)
     if cfg.cavitation == "half_sommerfeld":
         x0, _ = solve(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0)), cfg)
