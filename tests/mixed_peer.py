@@ -192,6 +192,7 @@ class Bearing:
 
         active = np.ones(N, bool) if self.active is None else self.active.copy()
         bscale = np.max(np.abs(couette)) + 1e-300
+        seen = set()
         for _ in range(300):
             S = np.flatnonzero(active)
             p = np.zeros(N)
@@ -218,6 +219,12 @@ class Bearing:
                 if not converged:
                     raise RuntimeError("the peer's Newton on the rupture share did not converge")
                 break
+            if new.tobytes() in seen:          # a cycle: admit one cell, the most starved
+                adds = np.flatnonzero(new & ~active)
+                if adds.size:
+                    new = active.copy()
+                    new[adds[np.argmin(outflow[adds])]] = True
+            seen.add(active.tobytes())
             active = new
         else:
             raise RuntimeError("the peer's active set did not settle")
