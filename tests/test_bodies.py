@@ -255,6 +255,7 @@ def test_a_liner_has_no_reference_length_and_checks_its_input():
         vjax.pin_in_hole(vjax.sleeve(SLS, 0.01), R, C, LOAD, options=PinOptions(n=64))
 
 
+@pytest.mark.slow
 def test_roller_with_a_bushing_and_a_sleeve():
     """The thesis's test-bearing layout (a bushing pressed into a rigid holder) with a sleeved
     inner ring: elastic at low speed (symmetric loads, no torque), and at a finite speed each

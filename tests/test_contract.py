@@ -106,6 +106,7 @@ def test_under_vmap_one_failed_point_raises_for_the_batch():
         jax.vmap(lambda f: pin(f, max_iter=5).torque)(loads).block_until_ready()
 
 
+@pytest.mark.slow
 def test_every_scene_warm_starts_from_a_previous_result():
     p0, r0, j0 = pin(), roller(), journal()
     p1 = vjax.pin_in_hole(SLS, 0.08, 0.005, 2800.0, omega_shaft=-5.0, options=PinOptions(n=64), initial=p0)

@@ -6,6 +6,7 @@ import pytest
 from experiments.benchmarks import distributed_sweep
 
 
+@pytest.mark.slow
 def test_two_processes_equal_one(tmp_path):
     res = distributed_sweep.main(processes=2, points=12, n=64, out_dir=tmp_path)
     assert res["max_difference"] <= 1e-12

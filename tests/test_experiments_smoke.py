@@ -70,6 +70,7 @@ def test_common_helpers(tmp_path):
     assert "-" in _common.format_table(["h"], [[float("nan")]])
 
 
+@pytest.mark.slow
 def test_roller_design_quick(tmp_path):
     """The gradient-vs-random-search design script runs end to end (one material, Z = 10,
     n = 128) and both methods use the same number of solver calls."""
@@ -84,6 +85,7 @@ def test_roller_design_quick(tmp_path):
     assert "roller bearing design" in (tmp_path / "design_summary_roller.txt").read_text()
 
 
+@pytest.mark.slow
 def test_torque_twin_quick(tmp_path):
     """The twin experiment writes its data, tables, refined material and plots, and both fits
     lower the torque misfit."""
@@ -97,6 +99,7 @@ def test_torque_twin_quick(tmp_path):
         assert (tmp_path / f"torque_twin_pin_{suffix}").exists(), suffix
 
 
+@pytest.mark.slow
 def test_bodies_figures_quick(tmp_path):
     from experiments.figures import bodies_figures
     report = bodies_figures.main(out_dir=tmp_path / "bodies", quick=True)
@@ -108,6 +111,7 @@ def test_bodies_figures_quick(tmp_path):
 
 
 
+@pytest.mark.slow
 def test_journal_dynamics_quick(tmp_path):
     report = journal_dynamics.main(out_dir=tmp_path, quick=True)
     assert report.checks and all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]
@@ -117,6 +121,7 @@ def test_journal_dynamics_quick(tmp_path):
     assert not list(tmp_path.glob(".*.tmp")), "temporary files left behind"
 
 
+@pytest.mark.slow
 def test_journal_bores_quick(tmp_path):
     report = journal_bores.stage(out_dir=tmp_path, quick=True)
     assert report.checks and all(c.passed for c in report.checks), [c for c in report.checks if not c.passed]

@@ -5,6 +5,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from fitting import jax_cache
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -64,6 +66,7 @@ def _export_run(tmp_path, *args):
     return int(traces), values
 
 
+@pytest.mark.slow
 def test_exported_programs_skip_tracing_and_give_the_same_bits(tmp_path):
     """jax_cache.call: the first process with the cache on traces and stores the program, a
     later one loads it without tracing; both give the bits of the plain call. A different

@@ -343,6 +343,7 @@ def test_options_validate_themselves(kwargs, name):
         JournalOptions(**kwargs)
 
 
+@pytest.mark.slow
 def test_float32_runs_without_nan():
     """vjax does not force float64: in float32 the solves converge to the looser default
     tolerance (1e-4) and nothing is NaN (run in a fresh interpreter without x64)."""

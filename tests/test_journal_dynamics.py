@@ -99,6 +99,7 @@ def _force(X, Y, Xdot, Ydot, n):
     return rot @ F
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps", [0.1, 0.5, 0.9])
 def test_reynolds_against_finite_differences(eps):
     n = 256
@@ -135,6 +136,7 @@ THESIS = dict(R=RB, radial_clearance=CB, viscosity=ETAB, omega_shaft=-0.4, omega
               options=JournalOptions(n=128))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["rigid_reynolds", "thesis_viscoelastic", "liner"])
 def test_zero_whirl_is_static_stiffness(case):
     if case == "rigid_reynolds":
@@ -150,6 +152,7 @@ def test_zero_whirl_is_static_stiffness(case):
 
 
 # ----------------------------------------------------------- viscoelastic limits
+@pytest.mark.slow
 def test_viscoelastic_liner_limits():
     """A liner in a stationary housing (the pattern fixed in it: steady state on the rubbery
     modulus E0). Whirl far below 1/tau: the elastic E0 liner (Z itself: the liner's own
@@ -287,6 +290,7 @@ def test_fixed_groove_full_sommerfeld(supply_angle):
     assert np.max(np.abs(np.asarray(Cd[1]) - np.asarray(Cr))) < 1e-4 * float(jnp.max(jnp.abs(Cr)))
 
 
+@pytest.mark.slow
 def test_fixed_groove_reynolds():
     """Reynolds conditions: a groove fixed at the widest gap of the turning-groove solution
     gives that solution (to the grid's snapping of the groove); opposite the load it does not

@@ -38,6 +38,7 @@ def long_load(eps):
 
 
 # ---------------------------------------------------------------- limits
+@pytest.mark.slow
 def test_short_bearing_limit_ocvirk():
     """L/D -> 0 (no groove: the ends set the datum): the ratio of Ocvirk's load at the computed
     eccentricity to the load tends to 1. Under Reynolds conditions each axial line decouples
@@ -193,6 +194,7 @@ def test_power_balance_and_outputs():
 
 
 # ---------------------------------------------------------------- misalignment
+@pytest.mark.slow
 def test_misalignment_moment():
     """Aligned: zero moment to round-off; the half-width solve of an aligned bearing (tilt
     None: the unknowns from mid-width to one end, mirrored) is the full-width solve's (a zero
@@ -253,6 +255,7 @@ def tilted():
     return q, J, co
 
 
+@pytest.mark.slow
 def test_gradients_against_finite_differences(tilted):
     """d(eccentricity, journal torque, side leakage, moment, position)/d(L, c, load) by
     implicit forward differentiation, against central differences of converged solves (1e-5)."""
@@ -332,6 +335,7 @@ def test_tilt_coefficients_are_the_static_stiffness_in_position_and_tilt(tilted)
         journal_finite.tilt_coefficients(R, C, ETA, load, D, omega_shaft=WJ, cavitation="jfo", options=OPT)
 
 
+@pytest.mark.slow
 def test_coefficients_against_nonlinear_solves(tilted):
     """Central differences of the nonlinear film force with the journal held at perturbed
     positions and velocities (Newton on the cell equations, :func:`journal_finite.force_at`), 1e-3."""
@@ -355,6 +359,7 @@ def test_coefficients_against_nonlinear_solves(tilted):
     assert np.max(np.abs(np.asarray(co.damping[0]) - Cd)) < 1e-3 * np.abs(Cd).max()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("cavitation, tol", [("sommerfeld", 2e-3), ("reynolds", 2.5e-3)])
 def test_coefficients_tend_to_the_long_bearing(cavitation, tol):
     """As L/D grows (groove fixed opposite the load), K/L and C/L tend to the fixed-groove long
@@ -435,6 +440,7 @@ def jfo_long():
     return W1, long, finite_
 
 
+@pytest.mark.slow
 def test_jfo_conserves_mass_and_meets_the_long_bearing(jfo_long):
     """cavitation="jfo" (Elrod's universal unknown cell by cell, the Couette flux carrying the
     upwind liquid fraction): every land cell conserves mass, so the groove's net outflow is the
@@ -502,6 +508,7 @@ def test_jfo_coefficients_meet_the_long_bearing_and_the_static_stiffness(jfo_lon
 
 
 # ---------------------------------------------------------------- nested start
+@pytest.mark.slow
 def test_fine_grids_start_from_the_coarse_grid():
     """From the rigid estimate Newton does not converge on 96 x 32 at Raimondi and Boyd's
     eps = 0.8, L/D = 1 row (74 steps, residual 0.2); started from the 48 x 16 solution (the

@@ -93,6 +93,7 @@ def test_power_balance_with_hysteresis(solution):
 
 
 # ---------------------------------------------------------------- the long-bearing limit
+@pytest.mark.slow
 def test_long_bearing_limit_with_a_liner():
     """L/D -> infinity with a 2 mm polymer liner (full Sommerfeld film, the groove fixed opposite
     the load, cosine axial spacing): Richardson's extrapolation from L/D = 50 and 100 meets the
@@ -130,6 +131,7 @@ def blocks(A):
     return [A[..., i:i + 2, j:j + 2] for i in (0, 2) for j in (0, 2)]
 
 
+@pytest.mark.slow
 def test_derivatives_and_the_static_stiffness():
     """jax.jacfwd of the tilted lined bearing's (position, moment, eps, attitude, torque) with
     respect to (load vector, liner thickness, liner E0, tilt), by implicit differentiation (GMRES
@@ -174,6 +176,7 @@ def test_derivatives_and_the_static_stiffness():
         assert np.max(np.abs(a - b)) < 1e-5 * np.abs(b).max()
 
 
+@pytest.mark.slow
 def test_mass_conserving_cavity_with_bodies():
     """cavitation="jfo" with the liner and the sleeve, the groove 2 rad from the load (the film
     re-forms inside the land, its cavity partly filled; the dense LU, cheaper to compile on this

@@ -26,6 +26,7 @@ def solution():
     return LINER, SLEEVE, journal_bearing(R, C, ETA, LOAD, **KW)
 
 
+@pytest.mark.slow
 def test_bodies_deform_as_their_3d_land_operators(solution):
     """The bore's displacement is the liner's land operator (pattern fixed: omega 0) and the
     journal's the sleeve's (pattern at -omega_shaft relative to it: each mode at its own
@@ -52,6 +53,7 @@ def test_what_the_3d_layer_does_not_support_is_refused():
     assert vjax.liner(SLS, 5e-3).axial == "slices"
 
 
+@pytest.mark.slow
 def test_coefficients_at_zero_whirl_are_the_static_stiffness():
     """K(0) of the bearing with a 3D bore (a hole through a body of the land's thickness, its
     plane mode 1 held at ref_length = R, not the default 1 m: the whirl response must use it too;

@@ -58,6 +58,7 @@ def test_equal_to_reynolds_with_groove_at_widest_gap(load):
     assert abs(-WJ * float(jfo.torque_shaft) - float(jfo.dissipation_fluid)) < 1e-9 * float(jfo.dissipation_fluid)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("supply_angle", [2.0, 5.5])
 def test_groove_away_from_widest_gap(supply_angle):
     """A groove fixed in the bearing away from the widest gap. Before the widest gap (2.0 rad
@@ -83,6 +84,7 @@ def test_groove_away_from_widest_gap(supply_angle):
         p = np.asarray(jfo.pressure)
         assert np.all(np.diff(k) == 1) and abs(p[k[0] - 1]) <= 1e-12 * p.max()
 
+@pytest.mark.slow
 def test_gradient_against_finite_differences():
     """d eps / d viscosity through the implicit derivative of the JFO solve (groove fixed,
     the film re-forming inside the bearing), against central differences."""
@@ -111,6 +113,7 @@ def _position(kw, initial):
     return position
 
 
+@pytest.mark.slow
 def test_dynamic_coefficients():
     """JFO stiffness at zero whirl = the static stiffness (jax.jacfwd of the steady solution);
     with the groove at the widest gap the cavity's liquid flows into the groove, so the

@@ -50,6 +50,7 @@ def test_same_solution_as_dense(case):
     assert np.max(np.abs(np.asarray(krylov.pressure - dense.pressure))) < 1e-8 * scale
 
 
+@pytest.mark.slow
 def test_few_modes_still_converge():
     """With the compliance kept on only its lowest mode (of 32) the preconditioner is poorer;
     GMRES makes up the rest and the solution is the same."""
@@ -58,6 +59,7 @@ def test_few_modes_still_converge():
     assert abs(float(a.eccentricity - b.eccentricity)) < 1e-9
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["thesis HS (soft SLS bore)", "jfo, fixed groove"])
 def test_implicit_derivatives_match_dense(case):
     """d(eps, attitude)/d(viscosity, load) by jacfwd and by grad (the transposed GMRES solve)."""
@@ -87,6 +89,7 @@ def test_implicit_derivatives_match_dense(case):
     assert np.allclose(gk, Jd[0], rtol=1e-7, atol=0)
 
 
+@pytest.mark.slow
 def test_banded_blocks_against_dense():
     rng = np.random.default_rng(1)
     for n in (9, 10, 11):                      # n mod 3 = 0, 1, 2: the colouring's wrap-around

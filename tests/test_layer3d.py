@@ -163,6 +163,7 @@ def test_float32_runs_without_nan():
 
 
 # ------------------------------------------------------------------------------ finite elements
+@pytest.mark.slow
 @pytest.mark.parametrize("kind, mesh", [("liner", (4, 8, 8)), ("sleeve", (3, 6, 6))])
 def test_one_mode_matches_3d_finite_elements(kind, mesh):
     """n = 2, k R = 4, nu = 0.45, t/R = 0.25 (c 42% / 26% above the plane-strain layer's): a

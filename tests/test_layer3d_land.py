@@ -40,6 +40,7 @@ def cosine_coefficients(zp, p, Q):
     return integral * np.where(np.arange(Q + 1) == 0, 1.0, 2.0) / L
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["liner", "hole"])
 def test_single_modes_match_the_direct_sum_of_3d_modes(kind):
     """p = cos(k theta) cos(j pi (z + L/2) / L) at the nodes of a 16 x 8 grid, element-constant in
@@ -67,6 +68,7 @@ def test_single_modes_match_the_direct_sum_of_3d_modes(kind):
         assert err < (1e-3 if k == n // 2 else 1e-4), (k, j, err)
 
 
+@pytest.mark.slow
 def test_long_land_tends_to_plane_strain_slices():
     """A smooth pressure over the land, p ~ cos^2(pi z / L) (zero with zero slope at the ends),
     liner t/R = 0.2, the axial spacing fixed (L / m = 1.25 R): the 3D layer's displacement tends to
@@ -87,6 +89,7 @@ def test_long_land_tends_to_plane_strain_slices():
     assert diffs[1] < 5e-4 and diffs[0] / diffs[1] > 12, diffs
 
 
+@pytest.mark.slow
 def test_piecewise_linear_pressure_is_resolved_on_any_axial_grid():
     """The operator takes the pressure piecewise linear between the axial nodes: a pressure that
     is piecewise linear on the coarse grid gives, at the coarse nodes, the same displacement on a
@@ -114,6 +117,7 @@ def test_axially_uniform_column_is_the_ring_operator():
     assert np.max(np.abs(op.symbol[:, 4] / ring.symbol - 1)) > 0.05
 
 
+@pytest.mark.slow
 def test_whirl_response_at_zero_whirl_is_the_steady_operator():
     """The whirl response of the 3D layer (full FFT in theta, DCT-I in z) at whirl 0 applied to a
     pressure is the steady land operator's (each theta mode at -k omega; periodic memory), to

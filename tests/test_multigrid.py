@@ -10,6 +10,7 @@ import dataclasses
 import jax
 import jax.numpy as jnp
 import numpy as np
+import pytest
 import scipy.sparse.linalg as spla
 
 import vjax
@@ -20,6 +21,7 @@ R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 D = 2 * R
 
 
+@pytest.mark.slow
 def test_multigrid_gmres_solves_the_newton_system(monkeypatch):
     """A rigid finite bearing (L/D = 1, 32 x 32, the half width: 32 x 16 cell unknowns) at the
     solver's rigid estimate, its Newton system solved as on a large grid: the V-cycle with

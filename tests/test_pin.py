@@ -65,6 +65,7 @@ def test_energy_balance_torque_times_speed_equals_modal_dissipation():
         assert np.isclose(-omega * float(r.torque), dissipation, rtol=1e-9)
 
 
+@pytest.mark.slow
 def test_torque_peaks_at_intermediate_speed_and_resists_motion():
     speeds = jnp.logspace(-3, 3, 13)
     torque = np.asarray(jax.vmap(lambda w: solve(w, n=256).torque)(speeds))
@@ -82,6 +83,7 @@ def test_memory_models_agree_slowly_and_part_fast():
     assert 3.5 < ratio[3.0] < 7.0
 
 
+@pytest.mark.slow
 def test_grid_convergence():
     """First order at least: with an error C n^-p the differences between successive
     doublings are C (1 - 2^-p) n^-p and fall at the same rate, so no n = 8192 reference is
@@ -93,6 +95,7 @@ def test_grid_convergence():
     assert order > 0.9, (torques, order)
 
 
+@pytest.mark.slow
 def test_gradients_match_central_differences():
     def outputs(p):
         E0, Einf, tau, omega, load, radius = p
@@ -109,6 +112,7 @@ def test_gradients_match_central_differences():
         assert np.allclose(jac[:, i], fd, rtol=1e-5), (i, jac[:, i], fd)
 
 
+@pytest.mark.slow
 def test_gradients_finite_across_contact_set_changes():
     loads = jnp.linspace(0.2, 2.0, 9) * LOAD
     grads = jax.vmap(jax.grad(lambda f: solve(1.0, n=256, load=f).torque))(loads)
@@ -132,6 +136,7 @@ def test_patch_speed_is_that_of_rolling_without_slip():
     assert np.isclose(float(r.patch_speed), pin_patch_speed(2.0, 0.5, R, C))
 
 
+@pytest.mark.slow
 def test_gradient_with_respect_to_the_shift_law_matches_central_differences():
     """The torque at 40 C through a WLF law referred to the material's 20 C."""
     def torque(shift):

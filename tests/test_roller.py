@@ -79,6 +79,7 @@ def test_energy_balance_each_ring_torque_times_speed_equals_modal_dissipation():
         np.testing.assert_allclose(w * torque_about_centre[ring], dissipation, rtol=arm)
 
 
+@pytest.mark.slow
 def test_torque_is_resolved_on_a_coarse_grid():
     """The patches are a few elements wide at n = 256, yet the torque is within 15% of a
     16x finer grid (the spectral slope makes it the modal dissipation over the speed)."""
@@ -118,6 +119,7 @@ def test_rollers_3_and_8_lose_contact_at_intermediate_speed():
     assert np.all(np.asarray(mid.roller_loads[0])[[0, 1, 8]] > 0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rigid", ["outer", "inner"])
 def test_rigid_ring_is_the_stiff_ring_limit(rigid):
     # A 1000x stiffer ring's contact is far narrower than an element, so it is resolved like
@@ -184,6 +186,7 @@ def _derivatives(p, w_tilde):
     return y[0], jac, g
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("w_tilde", [0.01, 1.4])
 def test_torque_gradients_vs_finite_differences(w_tilde):
     """d torque / d (E0, tau, clearance, R_O, R_I); at omega~ = 1.4 rollers 3/8 are unloaded."""

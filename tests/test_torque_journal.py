@@ -45,6 +45,7 @@ def test_oil_viscosity():
         ft.oil_viscosity(32.0, 5.4, density=0.0)
 
 
+@pytest.mark.slow
 def test_journal_torque_derivatives_vs_finite_differences():
     """One compiled residual Jacobian serves the derivatives and the finite differences (its
     residuals at x +- h e_i): the torque's derivative w.r.t. each log-parameter, from the
