@@ -14,7 +14,9 @@ of git commit REF (a temporary worktree), so that both see the same machine load
 Cases (float64): ``pin`` (thesis pin, n = 512), ``roller`` (9 rollers, n = 256), journal bearings
 at n = 256 with the dense Newton step (``journal_rigid``: rigid, Reynolds; ``journal_soft``:
 the thesis HS bore, with its nested n = 64 start; ``journal_jfo``: rigid, JFO, fixed groove),
-``journal_krylov`` (the HS bore at n = 2048, matrix-free GMRES), ``journal_coefficients`` (rigid,
+``journal_krylov`` (the HS bore at n = 2048, matrix-free GMRES), ``journal_finite`` and
+``journal_finite_256`` (a rigid finite bearing, L/D = 0.5, eps ~ 0.82, on the default 64 x 16
+grid and on 256 x 64, which starts from the 64 x 16 solution), ``journal_coefficients`` (rigid,
 n = 128, four whirl frequencies) and ``fit`` (the smooth Prony + shift fit of vjax-fit on the
 shipped pyvisco example, no files).
 
@@ -53,6 +55,9 @@ SETUP = {
     "journal_krylov": ("hs = dict(housing=vjax.Material.sls(1e6, 1e8, 1.0, 0.5), omega_shaft=-0.4, omega_housing=0.2)",
                        "vjax.journal_bearing(0.1, 5e-4, 1e-3, 220.0, **hs, "
                        "options=vjax.JournalOptions(n=2048, linear_solver='krylov')).torque"),
+    "journal_finite": ("", "vjax.journal_bearing(0.05, 5e-5, 0.01, 1e4, length=0.05, omega_shaft=100.0).torque"),
+    "journal_finite_256": ("", "vjax.journal_bearing(0.05, 5e-5, 0.01, 1e4, length=0.05, omega_shaft=100.0, "
+                               "options=vjax.FiniteJournalOptions(n=256, m=64)).torque"),
     "journal_coefficients": ("", "vjax.journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 50.0, 100.0, 200.0], "
                                  "omega_shaft=100.0, options=vjax.JournalOptions(n=128)).stiffness"),
     "fit": ("from fitting import calibrate, dma\ndata = dma.default_data('pyvisco')",

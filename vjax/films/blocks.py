@@ -24,20 +24,35 @@ def stencil(fn, x, n: int, k: int):
     C[a + 1, b + 1, i, j] = dF_ij / dx_(i + a, j + b) (0 where j + b is outside 0..k - 1).
     Columns coloured (i mod 3, j mod 3), the last n mod 3 rings with colours of their own so
     that the wrap-around never mixes two columns in one row's neighbourhood."""
+    colour, seeds = stencil_seeds(n, k, x.dtype)
+    _, jvp = jax.linearize(fn, x)
+    return stencil_from_products(jax.vmap(jvp)(seeds), colour)
+
+
+def stencil_seeds(n: int, k: int, dtype):
+    """The colouring of :func:`stencil`: ``colour`` (n, k), each cell's colour, and ``seeds``
+    (colours, n k), the tangents whose products with the Jacobian give the stencil
+    (:func:`stencil_from_products`). For a caller that batches them with tangents of its own
+    (one copy of the linearized function in the program)."""
     full = n - n % 3
     ci = jnp.concatenate([jnp.arange(full) % 3, 3 + jnp.arange(n - full)])
     colour = ci[:, None] * 3 + jnp.arange(k)[None, :] % 3                   # (n, k)
     ncol = 3 * (3 + n - full)
-    seeds = (colour.ravel()[None, :] == jnp.arange(ncol)[:, None]).astype(x.dtype)
-    _, jvp = jax.linearize(fn, x)
-    columns = jax.vmap(jvp)(seeds).reshape(ncol, n, k)       # row (i, j) of each colour's sum
-    rows_i, rows_j = jnp.arange(n)[:, None], jnp.arange(k)[None, :]
+    return colour, (colour.ravel()[None, :] == jnp.arange(ncol)[:, None]).astype(dtype)
 
-    def entry(a, b):
-        j2 = rows_j + b
-        ok = (j2 >= 0) & (j2 < k)
-        return jnp.where(ok, columns[colour[(rows_i + a) % n, jnp.clip(j2, 0, k - 1)], rows_i, rows_j], 0.0)
-    return jnp.stack([jnp.stack([entry(a, b) for b in (-1, 0, 1)]) for a in (-1, 0, 1)])
+
+def stencil_from_products(products, colour):
+    """The stencil C (3, 3, n, k) from the Jacobian's products (colours, n k) with the seeds of
+    :func:`stencil_seeds`."""
+    n, k = colour.shape
+    columns = products.reshape(-1, n, k)                     # row (i, j) of each colour's sum
+    # all nine neighbours in one gather: nine gathers would each get their own copy of the
+    # linearized function's last elementwise steps fused in by XLA (nine copies to compile)
+    a = jnp.arange(-1, 2)[:, None, None, None]
+    i, j = jnp.arange(n)[:, None], jnp.arange(k)[None, :]
+    j2 = j + jnp.arange(-1, 2)[None, :, None, None]          # (1, 3, 1, k)
+    ok = (j2 >= 0) & (j2 < k)
+    return jnp.where(ok, columns[colour[(i + a) % n, jnp.clip(j2, 0, k - 1)], i, j], 0.0)
 
 
 def stencil_blocks(C):

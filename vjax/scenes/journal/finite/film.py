@@ -268,10 +268,18 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part)."""
     n = cfg.n
     N = unknowns(cfg)
-    rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
+    full = lambda y: equations(y, pr, cfg, relaxed, subcell)[0]     # noqa: E731
+    _, matvec = jax.linearize(full, x)
+    unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
     if is_rigid(pr):
-        cells = lambda pz: cell_residual(rest(pz), pr, cfg, relaxed=relaxed, subcell=subcell)[0]     # noqa: E731
+        # the cells' stencil and the two columns d/d(e/c) from one batch of products with the
+        # linearized equations: one copy of their linearization in the compiled program
+        colour, seeds = blocks.stencil_seeds(n, columns(cfg), x.dtype)
+        products = jax.vmap(matvec)(jnp.concatenate([jnp.pad(seeds, ((0, 0), (0, 2))), unit]))
+        C = blocks.stencil_from_products(products[:-2, :N], colour)
+        cols = products[-2:].T                          # (N + 2, 2): d/d(e/c)
     else:
+        rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
         f0 = fields(x, pr, cfg, relaxed=relaxed)
         U0, load0, own = f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg)
 
@@ -279,13 +287,11 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
             U = U0 + own.real * (loading(interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
             return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)),
                                  subcell=subcell)[0]
-    C = blocks.stencil(cells, x[:N], n, columns(cfg))
-    full = lambda y: equations(y, pr, cfg, relaxed, subcell)[0]     # noqa: E731
-    _, matvec = jax.linearize(full, x)
-    _, vjp = jax.vjp(full, x)
-    unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
-    cols = jax.vmap(matvec)(unit).T                     # (N + 2, 2): d/d(e/c)
-    rows = jax.vmap(lambda c: vjp(c)[0])(unit)          # (2, N + 2): the force rows
+        C = blocks.stencil(cells, x[:N], n, columns(cfg))
+        cols = jax.vmap(matvec)(unit).T
+    # the force rows' pressure part: their own reverse-mode Jacobian, not the transpose of the
+    # whole equations (which Newton's program then need not hold)
+    rows = jax.jacrev(lambda y: force_balance(y, pr, cfg, relaxed))(x)
     border = (cols[:N], rows[:, :N], cols[N:])
     solve = stencil_solver(C, border)
     # J^T's factors are made where its solve is called (the derivatives), not in Newton's loop
@@ -293,7 +299,20 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     if is_rigid(pr) and columns(cfg) <= EXACT_WIDTH:
         return solve, lambda b: transposed()(b)
     gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
-    return (lambda b: gmres(matvec, solve, b)), (lambda b: gmres(lambda v: vjp(v)[0], transposed(), b))
+
+    def solve_transposed(b):     # J^T's products traced only where its solve is called
+        _, vjp = jax.vjp(full, x)
+        return gmres(lambda v: vjp(v)[0], transposed(), b)
+    return (lambda b: gmres(matvec, solve, b)), solve_transposed
+
+
+def force_balance(x, pr: Params, cfg: Config, relaxed=False):
+    """The force rows of :func:`equations`, (film force + load) / |W|, from the pressures alone
+    (the loading pressure's resultant): their Jacobian in the pressures for :func:`linear_model`
+    (the asperities' force, which depends on the position only, adds nothing there)."""
+    p_load = loading(interior(x[:unknowns(cfg)], cfg), pr, cfg, relaxed)[2]
+    F, _ = film2d.resultants(p_load, grid(cfg.n)[0], 0.5 * pr.L * pr.s, pr.R)
+    return (F + pr.load) / pr.W
 
 
 def stencil_solver(C, border=None, transposed=False):

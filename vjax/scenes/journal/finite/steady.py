@@ -238,12 +238,21 @@ def _run(pr: Params, cfg: Config, start: str):
     return outputs(x, pr, cfg, stats)
 
 
-NESTED_MIN_CELLS = 2048    # cold solves on n m >= this many cells start from the 2x coarser grid's solution
+NESTED_MIN_CELLS = 2048    # cold solves on n m >= this many cells start from a coarser grid's solution
+
+
+def _coarse_options(options: FiniteJournalOptions) -> FiniteJournalOptions:
+    """The grid a cold solve on a nesting grid (:func:`_nests`) starts from: halved until it no
+    longer nests (256 x 64 -> 64 x 16), so that one coarse program is compiled, not one per
+    level (each is a whole Newton; its size hardly depends on the grid)."""
+    while _nests(options):
+        options = dataclasses.replace(options, n=options.n // 2, m=options.m // 2)
+    return options
 
 
 def _nests(options: FiniteJournalOptions) -> bool:
-    """Whether a cold solve on this grid starts on the 2x coarser one (its nodes every other
-    node of this one in theta and z, uniform or cosine spacing): on fine grids the rigid
+    """Whether a cold solve on this grid starts on a coarser one (:func:`_coarse_options`; its
+    nodes every 2nd, 4th, ... node of this one in theta and z, uniform or cosine spacing): on fine grids the rigid
     estimate is far from the root in Newton's terms (a 96 x 32 grid at eps = 0.8, L/D = 1:
     74 steps without converging directly, 9 on 48 x 16)."""
     return options.n * options.m >= NESTED_MIN_CELLS and options.n % 4 == 0 and options.m % 4 == 0
@@ -251,11 +260,15 @@ def _nests(options: FiniteJournalOptions) -> bool:
 
 @partial(jax.jit, static_argnums=(2,))
 def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
-    """Unknowns on this grid from a solution on the 2x coarser one (the coarse nodes are the
-    even ones here): the new nodes get the mean of their two neighbours, in theta, then in z;
-    NaN where the coarse solve failed (then the rigid estimate starts, :func:`solve`)."""
-    u = _doubled(coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0))      # "jfo": the universal unknown
-    x0 = as_unknowns(u, coarse.position, pr, cfg, _doubled(coarse.asperity_pressure))
+    """Unknowns on this grid from a solution on a 2^j x coarser one (the coarse nodes every
+    2^j-th node here): at each doubling the new nodes get the mean of their two neighbours, in
+    theta, then in z; NaN where the coarse solve failed (then the rigid estimate starts,
+    :func:`solve`)."""
+    u = coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0)      # "jfo": the universal unknown
+    asperity = coarse.asperity_pressure
+    while u.shape[0] < cfg.n:
+        u, asperity = _doubled(u), _doubled(asperity)
+    x0 = as_unknowns(u, coarse.position, pr, cfg, asperity)
     return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
 
 
@@ -305,7 +318,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
             temperature=temperature, shift=shift, groove=groove, roughness=roughness, throw=False,
-            options=dataclasses.replace(options, n=n // 2, m=m // 2))
+            options=_coarse_options(options))
         pr, start = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg)), "given_or_guess"
     sol = _run(pr, cfg, start)
     # the hint only for a failure it can explain (concrete values)
