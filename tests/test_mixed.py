@@ -72,6 +72,7 @@ def test_stribeck_sweep_crosses_lift_off():
     assert np.all(curve.hersey == pytest.approx(ETA * curve.speed / (W / (L * 2 * R))))
 
 
+@pytest.mark.slow
 def test_derivatives_in_the_mixed_regime():
     """d(friction coefficient, eccentricity) by implicit differentiation, with respect to sigma,
     mu_b, the speed and the viscosity, against central differences, at a point where the
@@ -96,6 +97,7 @@ def test_derivatives_in_the_mixed_regime():
         np.testing.assert_allclose(np.asarray(J[k]), fd, rtol=1e-6, atol=1e-9 * np.max(np.abs(fd)))
 
 
+@pytest.mark.slow
 def test_mixed_stiffness_is_the_static_stiffness():
     """K at zero whirl, with the asperities' stiffness, equals the inverse of d(journal
     position)/d(load vector) of the steady solves (forward-mode through the implicit root)."""
@@ -112,6 +114,7 @@ def test_mixed_stiffness_is_the_static_stiffness():
     np.testing.assert_allclose(np.asarray(co.stiffness[0]), np.linalg.inv(np.asarray(compliance)), rtol=1e-5)
 
 
+@pytest.mark.slow
 def test_tilt_beyond_the_clearance():
     """Smooth surfaces: a tilt that moves the journal's ends by 5 clearances is refused before
     any work, naming the largest the clearance allows (2 c / L). Rough: edge contact (ends moved
@@ -134,6 +137,7 @@ def test_a_closing_smooth_film_says_a_roughness_would_carry_it():
 LINER = vjax.liner(vjax.Material.sls(1.5e9, 3e9, 0.01, 0.4), 2e-3)     # a 2 mm polymer liner (Pa, Pa, s)
 
 
+@pytest.mark.slow
 def test_a_lined_bearing_from_boundary_to_full_film():
     """The asperity pressure loads the liner with the film's: with sigma -> 0 the lined mixed
     bearing is the lined smooth one (to 1e-8); at a barely turning journal the asperities carry
@@ -161,6 +165,7 @@ def test_roughness_refused_where_it_is_not_built():
         vjax.journal_coefficients(R, C, ETA, W, 0.0, omega_shaft=30.0, roughness=ROUGH, housing=LINER, **BEARING)
 
 
+@pytest.mark.slow
 def test_dry_limit_against_the_pin_contact():
     """The lined bearing barely turning is dry contact of the journal in its bore: against the
     pin-in-hole contact solver on the same geometry and liner, per unit length (W / L), the
@@ -202,6 +207,7 @@ def test_against_the_peer_L_over_D_1_sigma_1um():
     _against_the_peer(1.0, 1e-6)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("L_over_D, sigma", [(0.5, 0.5e-6), (0.5, 1e-6), (1.0, 0.5e-6)])
 def test_against_the_peer_other_cases(L_over_D, sigma):
     _against_the_peer(L_over_D, sigma)
