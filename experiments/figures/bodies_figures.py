@@ -69,7 +69,7 @@ def test_bearing(out, material, shift, quick):
                                             temperature=T, shift=shift, initial=prev,
                                             options=vjax.RollerOptions(n=n), throw=False)
                     prev = r if bool(r.converged) else None
-                    loads = np.asarray(r.roller_loads[0])
+                    loads = np.asarray(r.roller_loads)[0]       # numpy: indexing a jax array compiles
                     out_rows.append((float(r.torque), int(np.sum(loads > 1e-9 * loads.max())),
                                      float(loads.max() * Z / (F / NEEDLE_LENGTH)), bool(r.converged)))
                     rows.append([name, F, T, float(N), *out_rows[-1]])
@@ -100,7 +100,7 @@ def winkler(out):
     m, t, c, F, R = vjax.Material.elastic(1e8, 0.3), 1e-4, 1e-4, 2e4, 0.08
     r = vjax.pin_in_hole(vjax.liner(m, t), R, c, F, options=vjax.PinOptions(n=2048))
     alpha, _, p = reference.winkler_pin(F, R, c, reference.oedometric_stiffness(1e8, 0.3, t))
-    return float(r.contact_angle), float(alpha), float(np.max(r.pressure)), float(p(0.0))
+    return float(r.contact_angle), float(alpha), float(np.asarray(r.pressure).max()), float(p(0.0))
 
 
 def water_journal(out, quick):

@@ -36,6 +36,7 @@ from experiments import _common
 
 _common.enable_x64()
 
+import jax  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -47,15 +48,33 @@ V = 0.5 * WJ * (R - C)
 LINER = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
 
 
+# The closed forms, each one compiled program (eager, each of their operations compiles its own
+# small program: about 40 of them).
+_closed_form_load = jax.jit(lambda eps: reference.long_bearing(eps, R, C, ETA, V, "half_sommerfeld")["load"])
+_closed_form_coefficients = jax.jit(lambda eps: reference.long_bearing_coefficients(eps, R, C, ETA, V,
+                                                                                    "half_sommerfeld"))
+
+
+def _in_line_of_centres(co, A):
+    """A 2 x 2 coefficient matrix of ``co`` turned into the line-of-centres frame (X from the
+    bore's centre to the journal's, Y 90 degrees counter-clockwise from it): as
+    ``JournalCoefficients.in_line_of_centres``, in numpy (no small programs to compile)."""
+    g = float(co.steady.line_of_centres_angle)
+    rot = np.array([[np.cos(g), -np.sin(g)], [np.sin(g), np.cos(g)]])
+    return rot.T @ np.asarray(A) @ rot
+
+
 def rigid_against_closed_form(n, eps_values):
     rows = []
     for eps in eps_values:
-        load = float(reference.long_bearing(eps, R, C, ETA, V, "half_sommerfeld")["load"])
+        load = float(_closed_form_load(eps))
+        # strategy "newton": a direct Newton from the rigid half-Sommerfeld estimate, which for the pi
+        # film is the solution up to the film's discretization; "auto" would first solve a 4x
+        # coarser grid, one more compiled program for a start that is no better
         co = vjax.journal_coefficients(R, C, ETA, load, [0.0, 50.0], omega_shaft=WJ, cavitation="half_sommerfeld",
-                                       options=JournalOptions(n=n))
-        K, Cd = (np.asarray(a[1]) for a in co.in_line_of_centres())
-        Kr, Cr = (np.asarray(a) for a in reference.long_bearing_coefficients(co.steady.eccentricity, R, C, ETA, V,
-                                                                            "half_sommerfeld"))
+                                       options=JournalOptions(n=n, strategy="newton"))
+        K, Cd = (_in_line_of_centres(co, a[1]) for a in (co.stiffness, co.damping))
+        Kr, Cr = (np.asarray(a) for a in _closed_form_coefficients(co.steady.eccentricity))
         rows.append([eps, float(co.steady.eccentricity), *(K.ravel() / 1e9), *(Cd.ravel() / 1e6),
                      np.abs(K - Kr).max() / np.abs(Kr).max(), np.abs(Cd - Cr).max() / np.abs(Cr).max()])
     return rows
@@ -63,17 +82,20 @@ def rigid_against_closed_form(n, eps_values):
 
 def liner_sweep(n, whirl):
     load = float(reference.long_bearing(0.5, R, C, ETA, V, "reynolds")["load"])
-    out = {}
-    for name, housing in (("rigid", None), ("polymer liner 2 mm", LINER)):
-        out[name] = vjax.journal_coefficients(R, C, ETA, load, whirl, housing=housing, omega_shaft=WJ,
-                                              options=JournalOptions(n=n))
+    out = {"rigid": vjax.journal_coefficients(R, C, ETA, load, whirl, omega_shaft=WJ, options=JournalOptions(n=n))}
+    # the lined bearing starts from the rigid one's solution: a cold start would first solve a 4x
+    # coarser grid (one more compiled program) for a start no better than this one
+    out["polymer liner 2 mm"] = vjax.journal_coefficients(R, C, ETA, load, whirl, housing=LINER, omega_shaft=WJ,
+                                                          initial=out["rigid"].steady, options=JournalOptions(n=n))
     return load, out
 
 
 def thesis_sweep(n, whirl):
     sls = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
+    # continuation from the rigid estimate: "auto" would first solve a 4x coarser grid, one more
+    # compiled program
     return vjax.journal_coefficients(0.1, 5e-4, 1e-3, 2.2e-3 * 1e6 * 0.1, whirl, housing=sls, omega_shaft=-0.4,
-                                     omega_housing=0.2, options=JournalOptions(n=n))
+                                     omega_housing=0.2, options=JournalOptions(n=n, strategy="continuation"))
 
 
 def jfo_against_reynolds(n, whirl, supply_angle=2.0, load=1e5):
@@ -169,7 +191,7 @@ def main(out_dir="experiments/out", quick=False):
                      + (f"whirl ratio {th['whirl_ratio']:.4f}, critical mass {th['critical_mass']:.4g} kg per "
                         f"{LENGTH} m bearing" if th["whirl"] else "none (stable at any mass)"))
     rey_s, jfo_s = jfo["reynolds"].steady, jfo["jfo"].steady
-    flow = float(np.mean(jfo_s.film * jfo_s.film_fraction)) * V      # the order of the film's flow
+    flow = float(np.mean(np.asarray(jfo_s.film) * np.asarray(jfo_s.film_fraction))) * V    # the film's flow, in order
     Kj = np.asarray(jfo["jfo"].stiffness)
     lines.append(f"Groove fixed 2 rad from the load (1e5 N/m): eps {float(rey_s.eccentricity):.4f} (Reynolds), "
                  f"{float(jfo_s.eccentricity):.4f} (JFO); net groove flow {float(rey_s.supply_flow):.3e} (Reynolds: "

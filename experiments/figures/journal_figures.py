@@ -50,6 +50,7 @@ from experiments import _common
 
 _common.enable_x64()
 
+import jax  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -68,10 +69,11 @@ CASE = (f"R_B = {RB} m, c = {C} m, eta = {ETA} Pa s, SLS bodies (E0 = 1 MPa, Ein
 CONFIGS = {"HS": dict(housing=SLS), "SH": dict(shaft=SLS), "SS": dict(housing=SLS, shaft=SLS)}
 
 
-def _solve(n, omega_j=WJ, **kw):
-    """The thesis bearing (Fig. 3.5 speeds by default) on an n-element grid."""
-    return vjax.journal_bearing(RB, C, ETA, LOAD, omega_shaft=omega_j, omega_housing=WB,
-                                options=vjax.JournalOptions(n=n), **kw)
+def _solve(n, omega_j=WJ, strategy="auto", **kw):
+    """The thesis bearing (Fig. 3.5 speeds by default) on an n-element grid; its arrays in numpy
+    (the tables below index them element by element: on jax arrays each index is a dispatch)."""
+    return jax.device_get(vjax.journal_bearing(RB, C, ETA, LOAD, omega_shaft=omega_j, omega_housing=WB,
+                                               options=vjax.JournalOptions(n=n, strategy=strategy), **kw))
 
 
 def _deg(x):
@@ -105,10 +107,23 @@ def _row(s):
                 hersey=float(s.hersey), iterations=int(s.iterations), stages=int(s.stages))
 
 
-def fig_3_4(out, n):
-    cases = {"circular": _solve(n, housing=ELASTIC),
-             "half-plane (l = 1 m)": _solve(n, housing=vjax.half_plane(ELASTIC)),
-             "half-plane (l = R_B)": _solve(n, housing=vjax.half_plane(ELASTIC, ref_length=RB))}
+def starts(n):
+    """Fig. 3.4's elastic bearings (circular and half-plane kernels) and the HS case at Fig. 3.5's
+    speeds, both memories: the starts of every other case of the figures.
+
+    Compiled programs: a cold start of vjax's default strategy with a soft body solves on 4x and
+    16x coarser grids first, each grid one more compiled program per configuration (bodies
+    present, elastic or viscoelastic). The elastic ones here are solved by continuation from the
+    rigid estimate (one program, their grid's), the HS case from the elastic solution, every
+    other case from the HS solution of its memory (one program per configuration)."""
+    elastic = {"circular": _solve(n, housing=ELASTIC, strategy="continuation"),
+               "half-plane (l = 1 m)": _solve(n, housing=vjax.half_plane(ELASTIC), strategy="continuation"),
+               "half-plane (l = R_B)": _solve(n, housing=vjax.half_plane(ELASTIC, ref_length=RB),
+                                              strategy="continuation")}
+    return elastic, {mem: _solve(n, housing=SLS, memory=mem, initial=elastic["circular"]) for mem in MEMORIES}
+
+
+def fig_3_4(out, n, cases):
     fig, ax = plt.subplots(figsize=(7, 4))
     ax2 = ax.twinx()
     styles = {"circular": "-", "half-plane (l = 1 m)": "--", "half-plane (l = R_B)": ":"}
@@ -136,8 +151,9 @@ def fig_3_4(out, n):
     return summary
 
 
-def fig_3_5_3_6(out, n):
-    sols = {(cfg, mem): _solve(n, memory=mem, **kw) for cfg, kw in CONFIGS.items() for mem in MEMORIES}
+def fig_3_5_3_6(out, n, hs):
+    sols = {(cfg, mem): hs[mem] if cfg == "HS" else _solve(n, memory=mem, initial=hs[mem], **kw)
+            for cfg, kw in CONFIGS.items() for mem in MEMORIES}
     fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(14, 7), sharex=True)
     fig.subplots_adjust(wspace=0.45)
     rows = []
@@ -212,15 +228,20 @@ def fig_3_5_3_6(out, n):
     return {f"{cfg}/{mem}": _row(s) for (cfg, mem), s in sols.items()}
 
 
-def fig_3_7_3_8(out, n, speeds):
+def fig_3_7_3_8(out, n, speeds, hs):
     table = {}
     profiles = {}
     for mem in MEMORIES:
-        prev = None
+        prev = hs[mem]
         for wj in speeds:
-            s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem, initial=prev, throw=False)
-            if not bool(s.converged):  # a cold start (auto falls back to continuation)
-                s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem)
+            # a Python float, as WJ: an np.float64 (strong type) compiles the set-up once more
+            wj = float(wj)
+            if wj / TAU == WJ:          # Fig. 3.5's case (the sweep's first point), solved already
+                s = hs[mem]
+            else:
+                s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem, initial=prev, throw=False)
+                if not bool(s.converged):  # a cold start (auto falls back to continuation)
+                    s = _solve(n, omega_j=wj / TAU, housing=SLS, memory=mem)
             prev = s
             table[(mem, wj)] = _row(s)
             profiles[(mem, wj)] = s
@@ -282,7 +303,7 @@ def fig_3_7_3_8(out, n, speeds):
     return table
 
 
-def ref_length_sensitivity(out, n):
+def ref_length_sensitivity(out, n, hs):
     """HS at omega~_J = -0.4: what the log reference length does to eps and the share.
 
     The bearing's hysteretic power, split by Fourier mode: D = Omega R_B (2 pi/n^2)
@@ -292,7 +313,7 @@ def ref_length_sensitivity(out, n):
     rows = []
     for mem in MEMORIES:
         for l in (RB, 1.0, 10.0):
-            s = _solve(n, housing=vjax.hole(SLS, ref_length=l), memory=mem)
+            s = _solve(n, housing=vjax.hole(SLS, ref_length=l), memory=mem, initial=hs[mem])
             S = vjax.ring_operator("hole", SLS, RB, n, omega=-WB, memory=mem, ref_length=l).symbol
             P = np.fft.rfft(np.asarray(s.pressure))
             k = np.arange(n // 2 + 1)
@@ -327,8 +348,10 @@ def finite_length(out, grid):
     opposite the load in all three (a real bearing's; the thesis's turns with the line of
     centres). The finite bearings' bore is the 3D hole (``HS_BORE_3D``). Returns (rows per case,
     power-balance error of each finite bearing)."""
+    # continuation from the rigid estimate: "auto" would first solve a 4x coarser grid, one more
+    # compiled program for this configuration (the groove fixed)
     sols = {"long": vjax.journal_bearing(RB, C, ETA, LOAD, omega_shaft=WJ, omega_housing=WB, housing=SLS,
-                                         groove="fixed", options=vjax.JournalOptions(n=256))}
+                                         groove="fixed", options=vjax.JournalOptions(n=256, strategy="continuation"))}
     for LD in (1.0, 0.5):
         L = 2 * RB * LD
         sols[f"L/D = {LD:g}"] = vjax.journal_bearing(
@@ -411,7 +434,8 @@ def main(out_dir="experiments/out", quick=False):
     n = 64 if quick else 512
     speeds = list(-np.geomspace(0.4, 10.0, 4 if quick else 20))
     lines = [f"Journal bearing, thesis Chapter 3 (n = {n}, reference length 1 m unless stated)", ""]
-    s34 = fig_3_4(out, n)
+    elastic, hs = starts(n)
+    s34 = fig_3_4(out, n, elastic)
     hdr = ["case", "eps", "eps_eff", "att[deg]", "hmin/c", "pmax/E0", "CB", "CJ(O')", "iters", "stages"]
     rows = [[k, v["eps"], v["eps_eff"], v["attitude_deg"], v["hmin_over_c"], v["pmax_over_E0"], v["CB"],
              v["CJ"], v["iterations"], v["stages"]] for k, v in s34.items()]
@@ -421,14 +445,14 @@ def main(out_dir="experiments/out", quick=False):
     ratio_r = s34["half-plane (l = R_B)"]["hmin_over_c"] / s34["circular"]["hmin_over_c"]
     lines.append(f"min film half-plane/circular: {ratio:.3f} (l = 1 m), {ratio_r:.3f} (l = R_B)")
     lines.append("")
-    s35 = fig_3_5_3_6(out, n)
+    s35 = fig_3_5_3_6(out, n, hs)
     hdr = ["case", "eps", "eps_eff", "att[deg]", "hmin/c", "pmax/E0", "CB", "CvB", "CJ(O')", "CvJ", "share%", "H"]
     rows = [[k, v["eps"], v["eps_eff"], v["attitude_deg"], v["hmin_over_c"], v["pmax_over_E0"], v["CB"],
              v["CvB"], v["CJ"], v["CvJ"], v["share_pct"], v["hersey"]] for k, v in s35.items()]
     lines.append("Fig. 3.5 / 3.6 (omega~_B = 0.2, omega~_J = -0.4)")
     lines.append(_common.format_table(hdr, rows))
     lines.append("")
-    s38 = fig_3_7_3_8(out, n, speeds)
+    s38 = fig_3_7_3_8(out, n, speeds, hs)
     hdr = ["memory", "omega~_J", "eps", "hmin/c", "CB", "CJ(O)", "CJ(O')", "CvB", "share%", "iters"]
     rows = [[mem, wj, v["eps"], v["hmin_over_c"], v["CB"], v["CJ_O"], v["CJ"], v["CvB"], v["share_pct"],
              v["iterations"]] for (mem, wj), v in s38.items()]
@@ -436,7 +460,7 @@ def main(out_dir="experiments/out", quick=False):
     lines.append(_common.format_table(hdr, rows))
     lines.append("")
     lines.append("Reference length of the log terms (HS, omega~_J = -0.4)")
-    lines.append(ref_length_sensitivity(out, n))
+    lines.append(ref_length_sensitivity(out, n, hs))
     for mem in MEMORIES:
         share = [s38[(mem, wj)]["share_pct"] for wj in speeds]
         lines.append(f"viscoelastic share of the bearing torque, memory={mem}: max {max(share):.2f}% "

@@ -51,7 +51,9 @@ def small_displacement_pin(material, R, dR, load, n, iterations=6, **kw):
         # indefinite and a Krylov solve can break down (NaN) at isolated reference
         # lengths; e is continuous in ref_length, so nudge it and retry.
         for k in range(5):
-            housing = vjax.hole(material, ref_length=R * np.exp(log_ref + 1e-6 * k))
+            # a Python float, as the default ref_length and the loads of the callers: an np.float64
+            # (strong type) here would compile the solver a second time
+            housing = vjax.hole(material, ref_length=float(R * np.exp(log_ref + 1e-6 * k)))
             r = vjax.pin_in_hole(housing, R, dR, load, options=vjax.PinOptions(n=n, **kw), throw=False)
             if np.isfinite(float(r.pin_offset)):
                 break

@@ -91,7 +91,9 @@ def _record(r, load):
 
 
 def make_sweep(n, memory, outer_only=False):
-    """Jitted continuation sweep ``f(material, load, shaft_speeds) -> dict of arrays``."""
+    """Jitted continuation sweep ``f(material, load, shaft_speeds) -> (dict of arrays, RollerResult)``,
+    the results stacked along the speeds (the snapshots of Figs. 2.16-2.20 are points of such a
+    sweep: one compiled program per memory for both)."""
     def solve(mat, load, w, initial=None):
         shaft = None if outer_only else mat
         return vjax.roller_bearing(mat, shaft, RO, RI, D, Z, load, omega_shaft=w, memory=memory,
@@ -103,7 +105,7 @@ def make_sweep(n, memory, outer_only=False):
 
         def step(prev, w):
             r = solve(mat, load, w, initial=prev)
-            return r, _record(r, load)
+            return r, (_record(r, load), r)
 
         return jax.lax.scan(step, r0, ws)[1]
 
@@ -244,7 +246,7 @@ def main(out_dir="experiments/out", quick=False):
         for Ft in (LOADS if not quick else (F_TILDE,)):
             load = Ft * E0 * RO
             t = time.perf_counter()
-            s = jax.device_get(sweeps[mem](SLS, load, jnp.asarray(shaft_speed(w))))
+            s = jax.device_get(sweeps[mem](SLS, load, jnp.asarray(shaft_speed(w)))[0])
             torque_res[(mem, Ft)] = {k: np.asarray(v) for k, v in s.items()}
             lines.append(f"  sweep {mem:8s} F~={Ft:g}: {time.perf_counter() - t:6.1f} s, all converged: "
                          f"{bool(np.all(s['converged']))}, Newton iterations {int(np.min(s['iterations']))}-"
@@ -269,8 +271,23 @@ def main(out_dir="experiments/out", quick=False):
             lines.append(f"  {mem} omega~={w[i]:g}: load asymmetry {asym:.1e}, C~ = "
                          f"{abs(res[mem]['torque'][i, 0]) / (F_TILDE * E0 * RO * RO):.1e}, Q_max Z/F = "
                          f"{L.max() * Z / (F_TILDE * E0 * RO):.4f}")
-    el = vjax.Material.elastic(E0, NU)
-    r_el = vjax.roller_bearing(el, el, RO, RI, D, Z, F_TILDE * E0 * RO, options=vjax.RollerOptions(n=n))
+    # Figs. 2.16-2.20's snapshots: the points of one more sweep (the same compiled program) from
+    # rest through SNAPS, on len(w) speeds, SNAPS[1:] among them with log-spaced steps between
+    decades = np.diff(np.log10(SNAPS[1:]))
+    steps = np.maximum(1, np.round(decades / decades.sum() * (len(w) - 2))).astype(int)
+    steps[-1] = len(w) - 2 - steps[:-1].sum()
+    snap_ws = np.concatenate([SNAPS[:2]] + [np.geomspace(a, b, k + 1)[1:] for a, b, k in
+                                             zip(SNAPS[1:-1], SNAPS[2:], steps)])
+    snaps = {}
+    for mem in MEMORIES:
+        rec, full = jax.device_get(sweeps[mem](SLS, F_TILDE * E0 * RO, jnp.asarray(shaft_speed(snap_ws))))
+        lines.append(f"  snapshots {mem}: all converged {bool(np.all(rec['converged']))}")
+        for wt in SNAPS:
+            i = int(np.flatnonzero(snap_ws == wt)[0])
+            snaps[(mem, wt)] = jax.tree_util.tree_map(lambda a, i=i: a[i], full)
+    # The elastic check: the SLS rings at rest are elastic rings of modulus E0 (their operator at zero
+    # speed is the relaxed one), the snapshot at omega~ = 0
+    r_el = snaps[("periodic", 0.0)]
     Q = np.asarray(r_el.roller_loads[0])
     c = np.maximum(np.cos(np.asarray(r_el.roller_angles)), 0)
     ratio = Q.max() * Z / (F_TILDE * E0 * RO)
@@ -281,12 +298,6 @@ def main(out_dir="experiments/out", quick=False):
                  + f" (Stribeck 10/9: {', '.join(f'{x:.4f}' for x in c[[0, 1, 2]] ** (1 / 0.9))})")
 
     # snapshots for Figs. 2.16-2.20
-    snap_fn = {mem: jax.jit(lambda wI, mem=mem: vjax.roller_bearing(SLS, SLS, RO, RI, D, Z, F_TILDE * E0 * RO,
-                                                                     omega_shaft=wI, memory=mem,
-                                                                     options=vjax.RollerOptions(n=n), throw=False))
-               for mem in MEMORIES}
-    snaps = {(mem, wt): jax.device_get(snap_fn[mem](shaft_speed(wt))) for mem in MEMORIES for wt in SNAPS}
-
     fig_2_14(w, res, out)
     fig_2_15(w, res, out)
     fig_2_16_20(snaps, out)
@@ -330,7 +341,7 @@ def main(out_dir="experiments/out", quick=False):
     rows, fig = [], plt.figure(figsize=(6, 4), constrained_layout=True)
     for T in (30.0, 50.0):
         mat = POLY.at_temperature(WLF, T)
-        s = jax.device_get(sweep_T(mat, load, jnp.asarray(rpm * 2 * np.pi / 60)))
+        s = jax.device_get(sweep_T(mat, load, jnp.asarray(rpm * 2 * np.pi / 60))[0])
         Ct = np.abs(np.asarray(s["torque"][:, 0]))          # N m/m
         lines.append(f"  bushing T = {T:g} C: all converged {bool(np.all(s['converged']))}, torque per unit length "
                      f"{Ct.min():.3e}..{Ct.max():.3e} N m/m over {rpm[0]:g}..{rpm[-1]:g} rpm (x {NEEDLE_LENGTH} m "
