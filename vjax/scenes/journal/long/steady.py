@@ -114,9 +114,12 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
                          omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation: str = "reynolds",
                          supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
                          shift=None, initial: JournalResult | None = None,
-                         options: JournalOptions = JournalOptions(), throw: bool = True) -> JournalResult:
+                         options: JournalOptions = JournalOptions(), throw: bool = True,
+                         nested: bool = True) -> JournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing: :func:`vjax.journal_bearing`
-    without ``length`` (its arguments; :mod:`vjax.scenes.journal.long` for the equations)."""
+    without ``length`` (its arguments; :mod:`vjax.scenes.journal.long` for the equations).
+    ``nested``: whether a cold start on a fine grid may begin on the 4x coarser one (one level:
+    the coarse solve itself starts cold, so that one more program is compiled, not one per level)."""
     groove = "line_of_centres" if groove is None else groove
     checks.instance("options", options, JournalOptions, "a vjax.JournalOptions")
     pr, cfg, housing, shaft = film.setup(
@@ -130,8 +133,8 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
                                                                                    initial.film_fraction)):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
         x0 = film.start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref)
-    elif options.strategy == "auto" and n % 4 == 0 and n >= (NESTED_MIN_N if housing is not None or shaft is not None
-                                                             else NESTED_MIN_N_RIGID):
+    elif nested and options.strategy == "auto" and n % 4 == 0 and n >= (
+            NESTED_MIN_N if housing is not None or shaft is not None else NESTED_MIN_N_RIGID):
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
         # cold start are spent far from the solution, where a coarse grid is as good and
         # (n/4)^3 cheaper. If the coarse start misleads, "auto" still falls back.
@@ -139,7 +142,7 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
             R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, groove=groove,
-            options=dataclasses.replace(options, n=n // 4), throw=False)
+            options=dataclasses.replace(options, n=n // 4), throw=False, nested=False)
         x0 = film.start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref)
     else:
         x0 = film.guess(pr, n, cfg)
