@@ -16,7 +16,9 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
    the closed forms, a polymer liner, the thesis case) and the oil-whirl threshold;
 8. ``bores``: journal bearings in a nearly rigid and a soft Prony bore, the soft one over two
    decades of speed and load: where the solver converges, in how many steps, and its message
-   where the bore's deformation leaves small-strain theory.
+   where the bore's deformation leaves small-strain theory;
+9. ``stribeck``: a finite journal bearing with rough surfaces from boundary friction through
+   mixed lubrication to a full film, rigid and lined, against today's smooth film.
 
 ``<out>/summary.md`` opens with what was computed and a table of every stage's checks
 (value, reference, tolerance, PASS/FAIL), defines the symbols, then gives each stage's
@@ -59,6 +61,7 @@ STAGES = [
     ("bodies", "experiments.figures.bodies_figures", "main"),
     ("dynamics", "experiments.figures.journal_dynamics", "main"),
     ("bores", "experiments.figures.journal_bores", "stage"),
+    ("stribeck", "experiments.figures.stribeck_figures", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (CPU seconds of each stage
 # alone, empty cache, default XLA emitters, calibration total 5.5 s: journal 61, bodies 38 with
