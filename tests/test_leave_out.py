@@ -35,7 +35,7 @@ def built(monkeypatch):
             return original(*args, **kwargs)
         monkeypatch.setattr(owner, attr, wrapper)
 
-    spy("ring_operator", vjax.bodies, "ring_operator", key=lambda kind, *a, **k: kind)
+    spy("ring_operator", vjax.bodies.body, "ring_operator", key=lambda kind, *a, **k: kind)
     # the viscoelastic response: the complex compliance (periodic memory) or the creep spectrum
     spy("memory", vjax.material.Material, "creep_spectrum")
     spy("memory", vjax.material.Material, "compliance")
