@@ -68,7 +68,9 @@ class HeatTransfer:
     def __post_init__(self):
         checks.finite("T_supply", self.T_supply)
         checks.finite("T_limit", self.T_limit)
-        checks.nonnegative("hA", self.hA)
+        if checks.is_concrete(self.hA):       # inf allowed: the isothermal limit
+            if not (np.all(np.asarray(self.hA) >= 0)):
+                raise ValueError(f"hA must be >= 0 (W/K; inf: isothermal), got {self.hA!r}")
         for name in ("T_ambient", "T_max_body"):
             if getattr(self, name) is not None:
                 checks.finite(name, getattr(self, name))
@@ -183,7 +185,9 @@ def _default_tol(T_ref, tol):
     if tol is not None:
         return tol
     eps = float(jnp.finfo(jnp.result_type(float)).eps)
-    return (1e3 if eps < 1e-10 else 30.0) * eps * (273.15 + abs(float(T_ref)))
+    T_ref = checks.values("T_supply", T_ref)
+    T_K = 373.15 if T_ref is None else 273.15 + abs(float(np.max(T_ref)))      # traced: a 100 C scale
+    return (1e3 if eps < 1e-10 else 30.0) * eps * T_K
 
 
 def _message(what, T, P, removed, T_limit, stats):
@@ -221,13 +225,14 @@ def _report(what, out: ThermalResult, T_limit, throw):
                      lambda a: jax.debug.callback(raise_, *a), lambda a: None, args)
 
 
-def _solve_balance(balance, params, heat: HeatTransfer, T_in, tol, max_iter):
+def _solve_balance(balance, params, oil_in: bool, tol, max_iter):
     """The effective temperature of ``balance(T, params) -> dict`` (T_star, valid, ...),
-    differentiated implicitly; then the balance at it."""
-    lo = jnp.minimum(T_in, heat.ambient)
-
+    differentiated implicitly; then the balance at it. ``params["heat"]``: the HeatTransfer;
+    ``oil_in``: the oil's supply temperature bounds the root from below too."""
     def solver(p):
-        T, stats = _root(lambda T: (lambda b: (b["T_star"], b["valid"]))(balance(T, p)), lo, heat.T_limit, tol,
+        h = p["heat"]
+        lo = jnp.minimum(h.T_supply, h.ambient) if oil_in else h.ambient
+        T, stats = _root(lambda T: (lambda b: (b["T_star"], b["valid"]))(balance(T, p)), lo, h.T_limit, tol,
                          max_iter)
         return jnp.atleast_1d(T), stats
 
@@ -351,7 +356,7 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         return dict(T_star=T_star, valid=s.converged, scene=s, P=P, P_film=P_film, P_B=P_B, P_J=P_J, eta=eta,
                     heat_oil=heat_oil, convected=convected, Q=s.side_leakage)
 
-    T, b, stats = _solve_balance(balance, params, heat, heat.T_supply, _default_tol(heat.T_supply, tol), max_iter)
+    T, b, stats = _solve_balance(balance, params, heat.oil_flow, _default_tol(heat.T_supply, tol), max_iter)
     T_out = 2 * T - heat.T_supply if heat.oil_flow else T
     out = _result(T, T_out, b, stats, lubricant.T_max, heat)
     _report("thermal_journal_bearing", out, heat.T_limit, throw)
@@ -383,8 +388,7 @@ def _dry(what, scene_fn, power_fn, heat, params, tol, max_iter, throw):
         return dict(T_star=T_star, valid=s.converged, scene=s, P=P, P_B=P_B, P_J=P_J, heat_oil=heat_oil,
                     convected=convected)
 
-    T, b, stats = _solve_balance(balance, dict(params, heat=heat), heat, heat.ambient,
-                                 _default_tol(heat.ambient, tol), max_iter)
+    T, b, stats = _solve_balance(balance, dict(params, heat=heat), False, _default_tol(heat.ambient, tol), max_iter)
     out = _result(T, T, b, stats, None, heat)
     _report(what, out, heat.T_limit, throw)
     return out
