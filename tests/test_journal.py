@@ -352,7 +352,7 @@ def test_float32_runs_without_nan():
     import textwrap
     code = textwrap.dedent("""
         import warnings; warnings.simplefilter("ignore")
-        import jax, numpy as np, vjax
+        import dataclasses, jax, numpy as np, vjax
         m = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
         for args, kw in (((0.05, 5e-5, 0.01, 2e5), dict(omega_shaft=100.0)),
                          ((0.1, 5e-4, 1e-3, 220.0), dict(omega_shaft=-0.4, omega_housing=0.2, housing=m))):
@@ -366,6 +366,8 @@ def test_float32_runs_without_nan():
         for kw in (dict(tilt=(1e-4, 0.0)), dict(housing=liner, cavitation="jfo")):
             s = vjax.journal_bearing(0.05, 5e-5, 0.01, 2000.0, omega_shaft=100.0, length=0.1,
                                      options=vjax.FiniteJournalOptions(n=16, m=4), throw=False, **kw)
+            assert float(s.film_parameter) == np.inf      # h_min / sigma of smooth surfaces
+            s = dataclasses.replace(s, film_parameter=s.min_film)
             leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
             assert s.pressure.dtype == np.float32, s.pressure.dtype
             assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)

@@ -32,7 +32,7 @@ RHO, CP, T_IN = 874.0, 1949.0, 40.0
 OPT = vjax.FiniteJournalOptions(n=48, m=16)
 OIL = vjax.Lubricant.walther(32.0, 5.34, 40.0, 100.0, rho=RHO, c_p=CP)
 SHARE = float(os.environ.get("PEER_SHARE", "1"))
-slow = pytest.mark.skipif(not os.environ.get("VJAX_SLOW"), reason="slow tier: set VJAX_SLOW=1")
+slow = pytest.mark.slow
 
 
 # ---- the peer ------------------------------------------------------------------------------------
