@@ -217,6 +217,7 @@ def test_pin_in_a_liner_torque_times_speed_is_the_modal_dissipation():
     assert np.isclose(-omega * float(r.torque), dissipation, rtol=1e-9)
 
 
+@pytest.mark.slow
 def test_pin_in_a_liner_gradient_vs_finite_differences_and_vmap():
     torque = lambda t: _pin(0.3, thickness=t).torque
     g = float(jax.grad(torque)(0.01))

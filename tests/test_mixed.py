@@ -57,6 +57,7 @@ def test_boundary_limit_is_dry_sliding_with_the_wrap_factor():
     assert float(r.eccentricity) > 1.0 and float(r.film_parameter) < 0
 
 
+@pytest.mark.slow      # stribeck_curve stays in the fast tier through the peer comparison
 def test_stribeck_sweep_crosses_lift_off():
     """A warm-started sweep from boundary to full film: every point converges, the asperity
     share falls with speed from ~1 to 0, friction has its Stribeck minimum inside the sweep,

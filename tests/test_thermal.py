@@ -307,6 +307,7 @@ def central(f, x, h):
     return (4 * d(h / 2) - d(h)) / 3
 
 
+@pytest.mark.slow
 def test_derivatives_through_the_thermal_root():
     """dT/d(hA), dT/dT_supply, dT/dC1 (WLF) of the pin's ring temperature by implicit
     derivatives against central differences of converged solves (1e-6)."""
