@@ -35,6 +35,9 @@ def smooth_sweep(speeds, options):
     for w in speeds[::-1]:
         r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=float(w), length=L, supply_angle=None, options=options,
                                  initial=last, throw=False)
+        if not bool(r.converged) and last is not None:     # a long step: from the rigid estimate instead
+            r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=float(w), length=L, supply_angle=None,
+                                     options=options, throw=False)
         if bool(r.converged):
             last, ok = r, ok + 1
     return ok
