@@ -28,6 +28,7 @@ from .films.roughness import Roughness
 from .scenes.pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .scenes.roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from .scenes.thermal import HeatTransfer, ThermalResult, thermal_journal_bearing, thermal_pin, thermal_roller
+from .scenes.thermal_film import FilmHeat, FilmTemperatureResult, thermal_film_bearing
 from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalCoefficients, JournalOptions,
                              JournalResult, StribeckCurve, journal_bearing, journal_coefficients,
                              stability_threshold, stribeck_curve, tilt_coefficients)
@@ -43,6 +44,7 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lub
            "RollerOptions", "RollerResult", "roller_bearing", "roller_patch_speeds", "reference", "sweep",
            "initialize_processes", "checks", "reynolds", "enable_compilation_cache", "Roughness", "StribeckCurve", "stribeck_curve"]
 __all__ += ["HeatTransfer", "ThermalResult", "thermal_journal_bearing", "thermal_pin", "thermal_roller"]
+__all__ += ["FilmHeat", "FilmTemperatureResult", "thermal_film_bearing"]
 
 # The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
 # their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still

@@ -90,13 +90,24 @@ def couette_flux(h, v, rough=None, sliding=0.0):
     return v * base + 0.5 * sliding * rough.Vr * rough.sigma * shear_flow_factor(Hc, rough.gamma)
 
 
+def face_viscosity(eta):
+    """Viscosity on the theta faces (n, m + 1) and the z faces (n, m) (Pa s): the mean of the
+    two nodes' for a node field ``eta`` (n, m + 1) (a film at a varying temperature), ``eta``
+    itself for a number."""
+    eta = jnp.asarray(eta)
+    if eta.ndim < 2:
+        return eta, eta
+    return 0.5 * (eta + jnp.roll(eta, -1, axis=0)), 0.5 * (eta[:, 1:] + eta[:, :-1])
+
+
 def fluxes(p, h, R, z, eta, v, fraction=None, rough=None, sliding=0.0):
     """Face films, gradients and fluxes of pressure ``p`` and film ``h`` on all nodes (n, m + 1):
     theta faces (i + 1/2, j): ``hx``, ``dpdx`` (Pa/m), ``qx`` (m^2/s per unit width), its
     Couette part ``cx``; z faces (i, j + 1/2), shape (n, m): ``hz``, ``dpdz``, ``qz`` (m^2/s per
     unit arc); the conductances' gap terms ``gx``, ``gz`` (m^3: h^3, or with ``rough`` Patir
     and Cheng's phi h_c^3 along and across the sliding; the Couette flux :func:`couette_flux`
-    with ``sliding``). With a liquid ``fraction`` (n, m + 1) ("jfo") the Couette flux carries
+    with ``sliding``), the faces' viscosities ``eta_x``, ``eta_z`` (:func:`face_viscosity`:
+    ``eta`` a number or a node field). With a liquid ``fraction`` (n, m + 1) ("jfo") the Couette flux carries
     the upwind node's liquid only (a striated cavity, as in 1D); the axial flux is the
     pressure's alone."""
     dth = 2 * jnp.pi / p.shape[0]
@@ -109,8 +120,9 @@ def fluxes(p, h, R, z, eta, v, fraction=None, rough=None, sliding=0.0):
     couette = couette_flux(hx, v, rough, sliding)
     if fraction is not None:
         couette = couette * upwind(fraction, v)
-    return dict(hx=hx, dpdx=dpdx, qx=-gx * dpdx / (12 * eta) + couette, cx=couette, gx=gx,
-                hz=hz, dpdz=dpdz, qz=-gz * dpdz / (12 * eta), gz=gz)
+    eta_x, eta_z = face_viscosity(eta)
+    return dict(hx=hx, dpdx=dpdx, qx=-gx * dpdx / (12 * eta_x) + couette, cx=couette, gx=gx, eta_x=eta_x,
+                hz=hz, dpdz=dpdz, qz=-gz * dpdz / (12 * eta_z), gz=gz, eta_z=eta_z)
 
 
 def net_outflow(f, R, z):
@@ -121,15 +133,15 @@ def net_outflow(f, R, z):
     return (qx - jnp.roll(qx, 1, axis=0)) * dz[None, :] + jnp.diff(f["qz"], axis=1) * R * dth
 
 
-def conductance(f, R, z, eta):
-    """Sum of the four face conductances of each interior cell (n, m - 1) (m^3/(Pa s)): the
-    diagonal of the pressure operator, the scale of its balance."""
+def conductance(f, R, z):
+    """Sum of the four face conductances of each interior cell (n, m - 1) (m^3/(Pa s)) from the
+    fluxes ``f`` of :func:`fluxes`: the diagonal of the pressure operator, the scale of its balance."""
     dth = 2 * jnp.pi / f["hx"].shape[0]
     dz = node_widths(z)[1:-1]
-    hx3 = f["gx"][:, 1:-1]
-    gx = (hx3 + jnp.roll(hx3, 1, axis=0)) * dz[None, :] / (R * dth)
-    gz = f["gz"] * R * dth / jnp.diff(z)[None, :]
-    return (gx + gz[:, 1:] + gz[:, :-1]) / (12 * eta)
+    kx = (f["gx"] / (12 * f["eta_x"]))[:, 1:-1]
+    gx = (kx + jnp.roll(kx, 1, axis=0)) * dz[None, :] / (R * dth)
+    gz = f["gz"] / (12 * f["eta_z"]) * R * dth / jnp.diff(z)[None, :]
+    return gx + gz[:, 1:] + gz[:, :-1]
 
 
 def cell_equations(p_scaled, outflow, scale, cavitation, groove, supply, couette_outflow=None, v=0.0, subcell=1.0):
@@ -162,12 +174,13 @@ def end_outflow(p, h, z, R, eta, rough=None):
     """Flow out of the land through both end planes (m^3/s): -h^3/(12 eta) dp/dz at z = +-L/2
     outward (with ``rough``: phi_y h_c^3 for h^3), the gradient from the quadratic through the
     end node and its two neighbours (second order on any spacing; a flux at the last face would
-    be first order)."""
+    be first order). ``eta``: a number or a node field (n, m + 1) (Pa s)."""
     dth = 2 * jnp.pi / p.shape[0]
+    eta = jnp.broadcast_to(eta, p.shape)
 
-    def upper(p, h, z):
+    def upper(p, h, z, eta):
         d1, d2 = z[-1] - z[-2], z[-1] - z[-3]
         dpdz = p[:, -1] * (1 / d1 + 1 / d2) - p[:, -2] * d2 / (d1 * (d2 - d1)) + p[:, -3] * d1 / (d2 * (d2 - d1))
         g = h[:, -1] ** 3 if rough is None else rough.poiseuille_across(h[:, -1])
-        return -jnp.sum(g * dpdz) * R * dth / (12 * eta)
-    return upper(p, h, z) + upper(p[:, ::-1], h[:, ::-1], -z[::-1])
+        return -jnp.sum(g * dpdz / (12 * eta[:, -1])) * R * dth
+    return upper(p, h, z, eta) + upper(p[:, ::-1], h[:, ::-1], -z[::-1], eta[:, ::-1])

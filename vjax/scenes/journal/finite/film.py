@@ -31,7 +31,7 @@ class Params:
     RJ: jax.Array
     c: jax.Array
     L: jax.Array
-    eta: jax.Array
+    eta: jax.Array               # viscosity (Pa s): a number, or a node field (n, m + 1) (a film's temperature field)
     v: jax.Array                 # entrainment speed (m/s)
     W: jax.Array                 # load magnitude (N)
     load: jax.Array              # (2,) load on the journal, grid axes (N)
@@ -213,7 +213,7 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
     if rate is not None and cfg.cavitation == "jfo":
         growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, interior(rate, cfg), 0.0)
     out = out + pr.R * dth * film2d.node_widths(f["z"])[None, 1:-1] * growth
-    scale = film2d.conductance(f, pr.R, f["z"], pr.eta) * pr.p_ref
+    scale = film2d.conductance(f, pr.R, f["z"]) * pr.p_ref
     couette = f["cx"][:, 1:-1]
     couette_out = (couette - jnp.roll(couette, 1, axis=0)) * film2d.node_widths(f["z"])[None, 1:-1]
     r = film2d.cell_equations(f["pz"], out, scale, cfg.cavitation, pr.groove[:, 1:-1], pr.ps / pr.p_ref,

@@ -79,7 +79,7 @@ def outputs(x, pr: Params, cfg: Config, stats):
     R, RJ, eta, z, theta = pr.R, pr.RJ, pr.eta, f["z"], f["theta"]
     dth = 2 * jnp.pi / n
     wz = film2d.node_widths(z)
-    hx, dpdx = f["hx"], f["dpdx"]
+    hx, dpdx, eta_x = f["hx"], f["dpdx"], f["eta_x"]
     dU = pr.omega_B * R - pr.omega_J * RJ
     # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
     liquid = film2d.upwind(f["fraction"], pr.v)
@@ -89,7 +89,7 @@ def outputs(x, pr: Params, cfg: Config, stats):
         poiseuille = (-0.5 * hx * dpdx) @ wz
         TB_p = R * arc * jnp.sum(poiseuille)
         TJ_p = RJ * arc * jnp.sum(poiseuille)
-        couette_B = couette_J = (liquid * eta * dU / hx) @ wz
+        couette_B = couette_J = (liquid * eta_x * dU / hx) @ wz
     else:
         # Patir and Cheng (1979): the mean shear on each surface, the factors at H_c; the shear
         # stress factor Phi_fs enters the journal's with -Vr, the bore's with +Vr
@@ -99,8 +99,8 @@ def outputs(x, pr: Params, cfg: Config, stats):
         poiseuille = (-0.5 * fp * hc * dpdx) @ wz
         TB_p = R * arc * jnp.sum(poiseuille)
         TJ_p = RJ * arc * jnp.sum(poiseuille)
-        couette_J = (liquid * eta * dU / hc * (ff - rough.Vr * fs)) @ wz
-        couette_B = (liquid * eta * dU / hc * (ff + rough.Vr * fs)) @ wz
+        couette_J = (liquid * eta_x * dU / hc * (ff - rough.Vr * fs)) @ wz
+        couette_B = (liquid * eta_x * dU / hc * (ff + rough.Vr * fs)) @ wz
     # the asperities' friction mu_b p_a opposes the sliding on both surfaces (p_a on the nodes)
     boundary = -jnp.sign(sliding(pr)) * (0.0 if rough is None else rough.mu_b) * arc * jnp.sum(p_a @ wz)
     # the pressure on each slice's deformed profile: its moment about the body's centre
@@ -115,8 +115,8 @@ def outputs(x, pr: Params, cfg: Config, stats):
     # gap terms and the Couette shear's mean factor phi_f (the two surfaces' Phi_fs cancel),
     # plus the asperities' friction mu_b p_a times the sliding speed
     couette_gap = hx if rough is None else hc / ff
-    power = arc * jnp.sum((f["gx"] * dpdx**2 / (12 * eta) + liquid * eta * dU**2 / couette_gap) @ wz) \
-        + arc * jnp.sum(f["gz"] * f["dpdz"] ** 2 / (12 * eta) * jnp.diff(z)[None, :]) \
+    power = arc * jnp.sum((f["gx"] * dpdx**2 / (12 * eta_x) + liquid * eta_x * dU**2 / couette_gap) @ wz) \
+        + arc * jnp.sum(f["gz"] * f["dpdz"] ** 2 / (12 * f["eta_z"]) * jnp.diff(z)[None, :]) \
         + jnp.abs(boundary * dU)
     leakage = film2d.end_outflow(f["p"], f["h"], z, R, eta, rough)
     # friction on the journal's surface resisting its sliding (N): its shear over the film's

@@ -53,7 +53,7 @@ def _rigid_capacity(eps, pr: Params, parts=False):
     """The rigid bearing's load capacity (N) at eccentricity ratio eps, estimated as the short
     (Ocvirk) and the long half-Sommerfeld capacities in series, 1/W = 1/W_short + 1/W_long (with
     ``parts``: the two)."""
-    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, pr.eta
+    v, c, R, L, eta = jnp.abs(pr.v), pr.c, pr.R, pr.L, jnp.mean(pr.eta)     # a viscosity field: its mean
     Ws = eta * 2 * v * L**3 / c**2 * eps * jnp.sqrt(16 * eps**2 + jnp.pi**2 * (1 - eps**2)) / (4 * (1 - eps**2) ** 2)
     Wl = 12 * eta * v * R**2 * L / c**2 * reference.half_sommerfeld_load(eps)
     return (Ws, Wl) if parts else Ws * Wl / (Ws + Wl)
@@ -68,7 +68,7 @@ def _guess(pr: Params, cfg: Config):
     mode, :func:`deformations`), so that the film keeps the rigid estimate's shape. With rough
     surfaces the asperities' capacity adds to the film's (:func:`_asperity_capacity`): at low
     speed they carry the load at an eccentricity past 1, along the line of centres."""
-    c, R, L, eta = pr.c, pr.R, pr.L, pr.eta
+    c, R, L, eta = pr.c, pr.R, pr.L, jnp.mean(pr.eta)
     if pr.rough is None:
         eps = _solve.bisect(lambda e: _rigid_capacity(e, pr) - pr.W, jnp.asarray(1e-6, c.dtype),
                             jnp.asarray(0.999, c.dtype), 50)

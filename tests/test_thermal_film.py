@@ -1,0 +1,126 @@
+"""Level 2 thermal journal bearing (vjax.thermal_film_bearing): the film's energy equation
+against its closed form, its cyclic block solve against a dense solve, the heat balance,
+the isoviscous and the infinitely cooled limits, implicit derivatives against central
+differences, runaway and bad input."""
+import math
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import pytest
+
+import vjax
+from vjax.films import energy, film2d
+
+RB, C, D = 0.050075, 75e-6, 0.1          # the ISO 7902 cases' bore radius, clearance, journal diameter (m)
+OIL = vjax.Lubricant.iso_vg(32)
+RPM = 3000.0
+OMEGA = RPM * 2 * math.pi / 60
+
+
+def bearing(heat, L=0.1, load=1e6 * 0.1 * 0.1, oil=OIL, n=32, m=8, **kw):
+    return vjax.thermal_film_bearing(RB, C, oil, load, heat, length=L, omega_shaft=OMEGA,
+                                     options=vjax.FiniteJournalOptions(n=n, m=m), **kw)
+
+
+def test_cyclic_block_solve_is_a_dense_solve():
+    rng = np.random.default_rng(0)
+    n, k = 7, 4
+    lower, upper = -rng.uniform(0, 1, (n, k)), -rng.uniform(0, 1, (n, k))
+    blocks = rng.uniform(-0.3, 0.3, (n, k, k)) + np.eye(k) * (3 + rng.uniform(0, 1, (n, 1, 1)))
+    A = np.zeros((n * k, n * k))
+    for i in range(n):
+        A[i * k:(i + 1) * k, i * k:(i + 1) * k] = blocks[i]
+        A[i * k:(i + 1) * k, ((i - 1) % n) * k:((i - 1) % n + 1) * k] += np.diag(lower[i])
+        A[i * k:(i + 1) * k, ((i + 1) % n) * k:((i + 1) % n + 1) * k] += np.diag(upper[i])
+    b = rng.normal(size=(n, k))
+    ops = tuple(jnp.asarray(a) for a in (lower, blocks, upper))
+    np.testing.assert_allclose(energy.cyclic_block_solve(ops, jnp.asarray(b)).ravel(), np.linalg.solve(A, b.ravel()),
+                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(energy.cyclic_block_solve(ops, jnp.asarray(b), transposed=True).ravel(),
+                               np.linalg.solve(A.T, b.ravel()), rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(energy.matvec(ops, jnp.asarray(b)).ravel(), A @ b.ravel(), rtol=1e-13)
+
+
+@pytest.mark.parametrize("carry_over", [0.0, 0.6])
+def test_concentric_couette_film_against_its_closed_form(carry_over):
+    """A concentric film (h = c, no pressure) carries the flux F = v c w_j round each line and
+    heats by eta U^2 / c per unit area: the rise per node is Phi / (rho c_p F), the groove's
+    T' = lambda T'_arriving, so T'_groove = lambda (n - 1) dT / (1 - lambda) and the nodes
+    downstream rise by dT each (upwind finite volumes are exact here)."""
+    n, m, R, eta, v = 24, 6, 0.05, 0.02, 5.0
+    z = film2d.axial_nodes(m, 0.04)
+    p = jnp.zeros((n, m + 1))
+    f = film2d.fluxes(p, jnp.full((n, m + 1), C), R, z, eta, v)
+    Fx, Fz = energy.face_flows(f, jnp.ones((n, m + 1)), R, z)
+    Phi = energy.dissipation(f, jnp.ones((n, m + 1)), 2 * v, R, z)
+    groove = jnp.zeros((n, m + 1)).at[0].set(1.0)
+    rho_cp = 874.0 * 1949.0
+    blocks, lam = energy.operator(Fx, Fz, groove, carry_over, jnp.zeros((n, m + 1)))
+    T = energy.cyclic_block_solve(blocks, jnp.where(groove > 0, 0.0, Phi / rho_cp))
+    rise = eta * (2 * v) ** 2 / C * (2 * math.pi * R / n) / (rho_cp * v * C)       # K per node
+    T_groove = carry_over * (n - 1) * rise / (1 - carry_over)
+    expected = T_groove + rise * np.arange(n)
+    np.testing.assert_allclose(np.asarray(T), np.broadcast_to(expected[:, None], (n, m + 1)), rtol=1e-11, atol=1e-12)
+    np.testing.assert_allclose(np.asarray(lam[0]), carry_over, rtol=1e-14)
+    np.testing.assert_allclose(np.asarray(energy.end_flows(Fx, Fz)), 0.0, atol=1e-20)
+
+
+def test_heat_balance_closes_with_every_path():
+    """Power = heat through the ends + the groove's discharge + the bush + the journal."""
+    for heat in (vjax.FilmHeat(T_supply=40.0),
+                 vjax.FilmHeat.liner(0.25, 5e-3, T_housing=30.0, T_supply=40.0, journal=200.0, T_journal=50.0)):
+        r = bearing(heat)
+        removed = r.heat_ends + r.heat_groove + r.heat_bush + r.heat_journal
+        assert abs(float(removed) / float(r.power) - 1) < 1e-10
+        assert float(r.max_temperature) > float(r.mean_temperature) > 40.0
+        assert float(r.residual) < 1e-8
+    assert float(r.heat_bush) > 0 and abs(float(r.heat_journal)) > 0
+
+
+def test_isoviscous_oil_leaves_the_film_as_the_isothermal_bearing():
+    oil = vjax.Lubricant.constant(0.02, rho=874.0, c_p=1949.0)
+    r = bearing(vjax.FilmHeat(T_supply=40.0), oil=oil)
+    iso = vjax.journal_bearing(RB, C, 0.02, 1e4, length=0.1, omega_shaft=OMEGA,
+                               options=vjax.FiniteJournalOptions(n=32, m=8))
+    assert abs(float(r.scene.eccentricity) / float(iso.eccentricity) - 1) < 1e-10
+    np.testing.assert_allclose(np.asarray(r.scene.pressure), np.asarray(iso.pressure), rtol=0,
+                               atol=1e-9 * float(iso.max_pressure))
+    assert float(r.max_temperature) > 45.0       # the temperature still follows the power
+
+
+def test_infinite_cooling_is_the_isothermal_bearing():
+    r = bearing(vjax.FilmHeat(T_supply=40.0, bush=1e13, journal=1e13, T_housing=40.0, T_journal=40.0))
+    iso = vjax.journal_bearing(RB, C, OIL.viscosity(40.0), 1e4, length=0.1, omega_shaft=OMEGA,
+                               options=vjax.FiniteJournalOptions(n=32, m=8))
+    assert float(r.max_temperature) - 40.0 < 1e-7
+    assert abs(float(r.scene.eccentricity) / float(iso.eccentricity) - 1) < 1e-9
+
+
+@pytest.mark.slow
+def test_derivatives_against_central_differences():
+    def f(a):
+        r = bearing(vjax.FilmHeat(T_supply=a[0], bush=a[1]), load=a[2])
+        return jnp.stack([r.mean_temperature, r.max_temperature, r.scene.eccentricity])
+    x = jnp.array([40.0, 500.0, 1e4])
+    J = np.asarray(jax.jacfwd(f)(x))
+    for i, step in enumerate((1e-3, 1e-2, 1.0)):
+        e = np.zeros(3)
+        e[i] = step
+        fd = (np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * step)
+        np.testing.assert_allclose(J[:, i], fd, rtol=1e-6)
+
+
+def test_runaway_and_bad_input_are_refused_by_name():
+    with pytest.raises(vjax.ConvergenceError, match="thermal runaway"):
+        bearing(vjax.FilmHeat(T_supply=40.0, T_limit=45.0))
+    r = bearing(vjax.FilmHeat(T_supply=40.0, T_limit=45.0), throw=False)
+    assert int(r.result) == vjax.scenes.thermal.RUNAWAY and np.isfinite(float(r.max_temperature))
+    with pytest.raises(ValueError, match="carry_over"):
+        vjax.FilmHeat(carry_over=1.0)
+    with pytest.raises(ValueError, match="bush"):
+        vjax.FilmHeat(bush=-1.0)
+    with pytest.raises(ValueError, match="cavitation"):
+        bearing(vjax.FilmHeat(), cavitation="half_sommerfeld")
+    with pytest.raises(ValueError, match="rho"):
+        bearing(vjax.FilmHeat(), oil=vjax.Lubricant.constant(0.02))
