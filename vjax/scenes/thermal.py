@@ -260,20 +260,22 @@ def striated_fraction(p, h, z, R, eta, v, full):
     node is full (pressurized, a groove's or the film outside the cavity), h_r / h_face in the
     cavity, h_r = q_x / v the flux (m^2/s) through the last full face upstream on the same
     axial line (the finite-volume flux into the cavity; the striated film carries it on at
-    the surfaces' mean speed v > 0). ``full`` (n, m + 1) bool. End lines take their inner
-    neighbours' fractions (the cavity reaches the edge)."""
+    the surfaces' mean speed v > 0). ``full`` (n, m + 1): bool, or a weight in [0, 1] (a node
+    partly full: its flux and the cavity's blended, a continuous switch). End lines take their
+    inner neighbours' fractions (the cavity reaches the edge)."""
     n = p.shape[0]
     f = film2d.fluxes(p, h, R, z, eta, v)
     hx, hr_face = f["hx"], f["qx"] / v
+    full = jnp.asarray(full, hx.dtype)
 
     def step(carry, xs):
         full_i, q_i = xs
-        carry = jnp.where(full_i, q_i, carry)
+        carry = full_i * q_i + (1.0 - full_i) * carry
         return carry, carry
 
     twice = lambda a: jnp.concatenate([a, a], axis=0)    # noqa: E731  (twice round: every line's wrap)
     _, hr = jax.lax.scan(step, hx[0], (twice(full), twice(hr_face)))
-    frac = jnp.where(full, 1.0, hr[n:] / hx)
+    frac = full + (1.0 - full) * hr[n:] / hx
     return frac.at[:, 0].set(frac[:, 1]).at[:, -1].set(frac[:, -2]), f
 
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from functools import partial
 
 import jax
 import jax.numpy as jnp
@@ -37,8 +38,10 @@ from .journal.finite.steady import finite_journal_bearing, solve as _finite_solv
 from .journal.options import FiniteJournalOptions
 from .thermal import MESSAGES, RUNAWAY, striated_fraction
 
-GMRES_TOL = 1e-12
-FREEZE = 10          # rounds in which the cavity's extent follows the film (then held: :func:`_round`)
+GMRES_TOL = 1e-13
+FULL = 1e-3          # a node with p below FULL p_max is partly cavitated (:func:`_energy`)
+ANDERSON = 5         # rounds in Anderson's mixing
+MAX_FAILS = 6        # failed films in a row before the solve gives up
 
 
 @jax.tree_util.register_dataclass
@@ -87,6 +90,7 @@ class FilmHeat:
         return cls(bush=conductivity / thickness, T_housing=T_housing, **kw)
 
 
+@jax.tree_util.register_dataclass
 @dataclasses.dataclass(frozen=True, repr=False)
 class FilmTemperatureResult(_scene.SceneResult):
     """A finite bearing with its film's temperature field (level 2; W, K, C).
@@ -172,16 +176,12 @@ def _area_mean(T_rise, params, st: _Static):
     return jnp.sum(T_rise @ wz) / (T_rise.shape[0] * jnp.sum(wz))
 
 
-def _cavity(x, pr, cfg):
-    """The nodes whose film is full (n, m + 1) bool: pressurized, or a groove's."""
-    p = fields(x, pr, cfg)["p_load"]
-    return (p > jnp.sqrt(jnp.finfo(p.dtype).eps) * jnp.max(p)) | (pr.groove > 0)
-
-
-def _energy(x, T_rise, params, st: _Static, pr, cfg, full):
-    """The energy equation at the film's unknowns x, ``full`` the full film's nodes
-    (:func:`_cavity`; a striated cavity downstream of the others): (operator blocks, right
-    side, parts)."""
+def _energy(x, T_rise, params, st: _Static, pr, cfg):
+    """The energy equation at the film's unknowns x: (operator blocks, right side, parts). Under
+    Reynolds cavitation a node is full in the proportion min(1, p / (FULL p_max)) (a groove's
+    fully): a continuous switch, so that the temperatures are a smooth function of the film
+    (a node at the rupture flipping between full and striated would make the rounds cycle and
+    the results jump)."""
     heat, oil = params["heat"], params["oil"]
     f = fields(x, pr, cfg)
     p, h, z = f["p_load"], f["h"], f["z"]
@@ -191,6 +191,7 @@ def _energy(x, T_rise, params, st: _Static, pr, cfg, full):
         frac = film2d.upwind(f["fraction"], pr.v)
         flux = film2d.fluxes(p, h, pr.R, z, pr.eta, pr.v)
     else:
+        full = jnp.maximum(jnp.clip(p / (FULL * jnp.max(p)), 0.0, 1.0), pr.groove)
         frac, flux = striated_fraction(p, h, z, pr.R, pr.eta, pr.v, full)
     Fx, Fz = energy.face_flows(flux, frac, pr.R, z)
     Phi = energy.dissipation(flux, frac, dU, pr.R, z)
@@ -217,63 +218,80 @@ def _hysteresis(f, pr, key):
     return -pr.R * jnp.sum(f["p_load"] * central, axis=0) @ film2d.node_widths(f["z"])
 
 
-def _residual(u, full, params, st: _Static, shape):
+def _residual(u, params, st: _Static, shape):
     """The coupled equations at u = (the film's unknowns, the temperature rise): the film's cell
     equations and force balance, and the energy equation over its diagonal (K)."""
     n_T = shape[0] * shape[1]
     x, T_rise = u[:-n_T], u[-n_T:].reshape(shape)
     pr, cfg = _film_params(T_rise, params, st)
-    blocks, rhs, _ = _energy(x, T_rise, params, st, pr, cfg, full)
+    blocks, rhs, _ = _energy(x, T_rise, params, st, pr, cfg)
     scale = jnp.einsum("ijj->ij", blocks[1])
     r_T = (energy.matvec(blocks, T_rise) - rhs) / scale
     return jnp.concatenate([equations(x, pr, cfg)[0], r_T.ravel()])
 
 
 def _round(carry, params, st: _Static, shape):
-    """One round of successive substitution: the film at the viscosity of T, then T from the
-    energy equation; the update relaxed by ``st.relax``. The cavity's extent is updated in the
-    first FREEZE rounds, then held (a node at the rupture switching between full and striated
-    would otherwise make the rounds cycle)."""
-    x, T_rise, _, k, _, full = carry
+    """One round: the film at the viscosity of T, then G(T), the temperature the energy equation
+    gives at that film; the next T by Anderson's mixing of the last ANDERSON rounds (Walker and
+    Ni 2011; the plain relaxed step T + relax (G - T) while the history is empty). G's slope is
+    about -1 in the film's mean temperature (a hotter film thins and shears less), which plain
+    substitution would follow in a slow oscillation. Where the film's Newton fails at a T (a
+    mixing step too bold), the round goes back halfway to the last T whose film converged and
+    restarts the history."""
+    x_good, T_rise, _, k, fails, (dT, dF, T_prev, F_prev) = carry
     pr, cfg = _film_params(T_rise, params, st)
-    x, stats = _finite_solve(dataclasses.replace(pr, x0=x), cfg, "given")
-    full = jnp.where(k < FREEZE, _cavity(x, pr, cfg), full)
-    blocks, rhs, _ = _energy(x, T_rise, params, st, pr, cfg, full)
-    T_new = energy.cyclic_block_solve(blocks, rhs)
-    change = jnp.max(jnp.abs(T_new - T_rise))
-    ok = (stats.result == _solve.SUCCESS) & jnp.all(jnp.isfinite(T_new))
-    T_next = jnp.where(ok, T_rise + st.relax * (T_new - T_rise), T_rise)
-    return x, T_next, change, k + 1, stats.result, full
+    x, stats = _finite_solve(dataclasses.replace(pr, x0=x_good), cfg, "given")
+    blocks, rhs, _ = _energy(x, T_rise, params, st, pr, cfg)
+    T, F = T_rise.ravel(), energy.cyclic_block_solve(blocks, rhs).ravel() - T_rise.ravel()
+    ok = (stats.result == _solve.SUCCESS) & jnp.all(jnp.isfinite(F))
+    change = jnp.where(ok, jnp.max(jnp.abs(F)), jnp.inf)
+    # the history: differences of the iterates and of their residuals, a ring of ANDERSON slots
+    slot = (k - 1) % ANDERSON
+    restart = (k == 0) | (fails > 0) | ~ok
+    dT = jnp.where(restart, 0.0, dT.at[slot].set(T - T_prev))
+    dF = jnp.where(restart, 0.0, dF.at[slot].set(F - F_prev))
+    used = jnp.any(dF != 0.0, axis=1)
+    gram = dF @ dF.T
+    gram = jnp.where(used[:, None] & used[None, :], gram, 0.0) + jnp.diag(jnp.where(used, 1e-14 * jnp.trace(gram), 1.0))
+    gamma = jnp.where(used, jnp.linalg.solve(gram, jnp.where(used, dF @ F, 0.0)), 0.0)
+    step = st.relax * F - (dT + st.relax * dF).T @ gamma
+    step = jnp.where(jnp.all(jnp.isfinite(step)), step, st.relax * F)
+    # a failed film: back halfway to the last good T (T_prev, whose film x_good is)
+    T_next = jnp.where(ok, T + step, 0.5 * (T + T_prev)).reshape(shape)
+    T_prev, F_prev = jnp.where(ok, T, T_prev), jnp.where(ok, F, F_prev)
+    return jnp.where(ok, x, x_good), T_next, change, k + 1, jnp.where(ok, 0, fails + 1), (dT, dF, T_prev, F_prev)
+
+
+_round_compiled = jax.jit(_round, static_argnums=(2, 3))
 
 
 def _solver(params, st: _Static, shape, x0):
-    """Successive substitution from x0 (the film at the supply temperature) and T' = 0, under a
+    """Rounds (:func:`_round`) from x0 (the film at the supply temperature) and T' = 0, under a
     trace in a while_loop, else in Python over one compiled round."""
     f = jnp.result_type(float)
     heat = params["heat"]
-    carry = (x0, jnp.zeros(shape, f), jnp.asarray(jnp.inf, f), jnp.asarray(0), jnp.asarray(_solve.SUCCESS),
-             jnp.ones(shape, bool))
+    N = shape[0] * shape[1]
+    history = (jnp.zeros((ANDERSON, N), f), jnp.zeros((ANDERSON, N), f), jnp.zeros(N, f), jnp.zeros(N, f))
+    carry = (x0, jnp.zeros(shape, f), jnp.asarray(jnp.inf, f), jnp.asarray(0), jnp.asarray(0), history)
+    hot = lambda T_rise: jnp.max(heat.T_supply + T_rise) > heat.T_limit       # noqa: E731
 
     def cond(c):
-        _, T_rise, change, k, inner, _ = c
-        hot = jnp.max(heat.T_supply + T_rise) > heat.T_limit
-        return (change > st.tol) & (k < st.max_iter) & (inner == _solve.SUCCESS) & ~hot
+        _, T_rise, change, k, fails = c[:5]
+        return (change > st.tol) & (k < st.max_iter) & (fails < MAX_FAILS) & ~hot(T_rise)
 
-    step = lambda c: _round(c, params, st, shape)      # noqa: E731
     if checks.is_concrete(jax.tree_util.tree_leaves(params)):
-        step = jax.jit(step)
         while bool(cond(carry)):
-            carry = step(carry)
+            carry = _round_compiled(carry, params, st, shape)
     else:
-        carry = jax.lax.while_loop(cond, step, carry)
-    x, T_rise, change, k, inner, full = carry
-    hot = jnp.max(heat.T_supply + T_rise) > heat.T_limit
-    result = jnp.where(inner != _solve.SUCCESS, _solve.INNER_FAILED,
-                       jnp.where(hot, RUNAWAY, jnp.where(change <= st.tol, _solve.SUCCESS,
-                                                         jnp.where(k >= st.max_iter, RUNAWAY, _solve.MAX_ITERATIONS))))
-    # k == max_iter with the change still above tol: the rounds ran away or stalled
-    result = jnp.where((result == RUNAWAY) & ~hot & (k >= st.max_iter), _solve.MAX_ITERATIONS, result)
-    return jnp.concatenate([x, T_rise.ravel()]), (_solve.Stats(k, change, result), full)
+        carry = jax.lax.while_loop(cond, lambda c: _round(c, params, st, shape), carry)
+    x, T_next, change, k, fails, (_, _, T_rise, _) = carry
+    # the temperatures x's film was solved at (the last round's, before its update): the pair is
+    # the root to the film's tolerance and the last change, whatever the update did
+    T_rise = jnp.where((k > 0) & ~hot(T_next), T_rise.reshape(shape), T_next)      # runaway: where it got to
+    result = jnp.where(fails > 0, _solve.INNER_FAILED,
+                       jnp.where(hot(T_rise), RUNAWAY,
+                                 jnp.where(change <= st.tol, _solve.SUCCESS, _solve.MAX_ITERATIONS)))
+    return jnp.concatenate([x, T_rise.ravel()]), _solve.Stats(k, change, result)
 
 
 def _linear_solver(st: _Static, shape):
@@ -284,7 +302,7 @@ def _linear_solver(st: _Static, shape):
     def make(u, aux, params):
         x, T_rise = u[:-n_T], u[-n_T:].reshape(shape)
         pr, cfg = _film_params(T_rise, params, st)
-        blocks, _, _ = _energy(x, T_rise, params, st, pr, cfg, aux[1])
+        blocks, _, _ = _energy(x, T_rise, params, st, pr, cfg)
         diag = jnp.einsum("ijj->ij", blocks[1])
         if solved_by_linear_model(pr, cfg):
             film_solve, film_solve_t = linear_model(x, pr, cfg)
@@ -292,7 +310,7 @@ def _linear_solver(st: _Static, shape):
             lu = jax.scipy.linalg.lu_factor(jax.jacfwd(lambda y: equations(y, pr, cfg)[0])(x))
             film_solve = lambda b: jax.scipy.linalg.lu_solve(lu, b)            # noqa: E731
             film_solve_t = lambda b: jax.scipy.linalg.lu_solve(lu, b, trans=1)   # noqa: E731
-        full = lambda v: _residual(v, aux[1], params, st, shape)                 # noqa: E731
+        coupled = lambda v: _residual(v, params, st, shape)                      # noqa: E731
 
         def precond(fs, transposed):
             def apply(b):
@@ -305,11 +323,11 @@ def _linear_solver(st: _Static, shape):
             return apply
 
         def forward(b):
-            _, mv = jax.linearize(full, u)
+            _, mv = jax.linearize(coupled, u)
             return krylov.gmres(mv, b, precond(film_solve, False), GMRES_TOL, 400)[0]
 
         def transpose(b):
-            _, vjp = jax.vjp(full, u)
+            _, vjp = jax.vjp(coupled, u)
             return krylov.gmres(lambda v: vjp(v)[0], b, precond(film_solve_t, True), GMRES_TOL, 400)[0]
         return forward, transpose
     return make
@@ -319,7 +337,7 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                          shift=None, omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2,
                          supply_angle=math.pi, supply_width=1.0, cavitation="reynolds",
                          options: FiniteJournalOptions = FiniteJournalOptions(), tol=None, max_iter=80,
-                         relax=0.8, throw=True) -> FilmTemperatureResult:
+                         relax=0.5, throw=True) -> FilmTemperatureResult:
     """A finite journal bearing with its film's temperature field (module docs; docs/theory.md
     §19.2): the arguments of :func:`vjax.journal_bearing` with ``length=`` for an aligned
     bearing with an axial groove at ``supply_angle`` (held at ambient pressure), the
@@ -358,20 +376,21 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                                   supply_width=supply_width, options=options, throw=False, **at)
     pr0, cfg0 = _film_params(jnp.zeros(shape), params, st)
     x0 = jax.lax.stop_gradient(_finite_setup.start_from(cold, pr0, cfg0))
-    u, (stats, full) = _solve.implicit_root(lambda p: _solver(p, st, shape, x0),
-                                            lambda uu, aux, p: _residual(uu, aux[1], p, st, shape),
-                                            _linear_solver(st, shape))(params)
-    out = _outputs(u, full, params, st, shape, stats, lubricant)
+    u, stats = _solve.implicit_root(lambda p: _solver(p, st, shape, x0),
+                                    lambda uu, aux, p: _residual(uu, p, st, shape),
+                                    _linear_solver(st, shape))(params)
+    out = _outputs(u, params, st, shape, stats, lubricant)
     _report(out, heat.T_limit, throw)
     return out
 
 
-def _outputs(u, full, params, st: _Static, shape, stats, lubricant):
+@partial(jax.jit, static_argnums=(2, 3))
+def _outputs(u, params, st: _Static, shape, stats, lubricant):
     heat = params["heat"]
     n_T = shape[0] * shape[1]
     x, T_rise = u[:-n_T], u[-n_T:].reshape(shape)
     pr, cfg = _film_params(T_rise, params, st)
-    blocks, rhs, parts = _energy(x, T_rise, params, st, pr, cfg, full)
+    blocks, rhs, parts = _energy(x, T_rise, params, st, pr, cfg)
     scene = outputs(x, pr, cfg, stats)
     T = heat.T_supply + T_rise
     rho_cp = parts["rho_cp"]
