@@ -19,8 +19,9 @@ OMEGA = RPM * 2 * math.pi / 60
 
 
 def bearing(heat, L=0.1, load=1e6 * 0.1 * 0.1, oil=OIL, n=32, m=8, **kw):
-    return vjax.thermal_film_bearing(RB, C, oil, load, heat, length=L, omega_shaft=OMEGA,
-                                     options=vjax.FiniteJournalOptions(n=n, m=m), **kw)
+    speeds = {} if "omega_housing" in kw else dict(omega_shaft=OMEGA)
+    return vjax.thermal_film_bearing(RB, C, oil, load, heat, length=L, options=vjax.FiniteJournalOptions(n=n, m=m),
+                                     **speeds, **kw)
 
 
 def test_cyclic_block_solve_is_a_dense_solve():
@@ -126,3 +127,20 @@ def test_runaway_and_bad_input_are_refused_by_name():
         bearing(vjax.FilmHeat(), cavitation="half_sommerfeld")
     with pytest.raises(ValueError, match="rho"):
         bearing(vjax.FilmHeat(), oil=vjax.Lubricant.constant(0.02))
+
+
+def test_polymer_liner_sits_at_the_films_mean_temperature():
+    """A turning liner (the film's pressure travels round it) whose material relaxes faster when
+    hot (WLF) sits at the land's mean film temperature: the balance, its hysteresis included,
+    still closes, and the hot liner, nearer its rubbery modulus, deforms more than the same
+    liner held at its reference temperature (and conforms: the journal sits lower in its
+    film's eccentricity, not higher)."""
+    liner = vjax.liner(vjax.Material.sls(1.5e9, 4e9, 1e-3, 0.4), 3e-3)
+    shift = vjax.WLF(8.86, 101.6, 40.0)
+    hot = bearing(vjax.FilmHeat(T_supply=40.0), housing=liner, shift=shift, omega_housing=OMEGA)
+    held = bearing(vjax.FilmHeat(T_supply=40.0), housing=liner, omega_housing=OMEGA)
+    assert float(hot.power_bodies) > 0
+    assert abs(float(hot.heat_ends + hot.heat_groove + hot.heat_bush + hot.heat_journal) / float(hot.power) - 1) < 1e-10
+    assert float(hot.body_temperature) == pytest.approx(float(hot.mean_temperature), rel=1e-14)
+    assert float(hot.scene.eccentricity) < float(held.scene.eccentricity)
+    assert float(hot.scene.displacement.max()) > float(held.scene.displacement.max()) > 0
