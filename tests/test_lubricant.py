@@ -10,6 +10,7 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
+import vjax
 from vjax.materials.lubricant import ISO_VG, Lubricant, as_lubricant
 
 VG32 = dict(nu_1=32.0, nu_2=5.34, rho=874.0)
@@ -249,3 +250,17 @@ def test_bad_input_names_the_argument():
         with pytest.raises(ValueError, match=message):
             make()
     Lubricant.iso_vg(32).require("rho", "c_p", "k")       # all known: no error
+
+
+def test_journal_bearing_takes_a_lubricant_at_its_temperature():
+    """A Lubricant (or a function of T) in place of the viscosity: the bearing at
+    eta(temperature), long and finite; without a temperature it is refused by name."""
+    oil = vjax.Lubricant.iso_vg(32)
+    eta = float(oil.viscosity(60.0))
+    for kw, load in (({}, 2e4), (dict(length=0.05, options=vjax.FiniteJournalOptions(n=32, m=8)), 2e3)):
+        a = vjax.journal_bearing(0.05, 5e-5, oil, load, omega_shaft=100.0, temperature=60.0, **kw)
+        b = vjax.journal_bearing(0.05, 5e-5, eta, load, omega_shaft=100.0, **kw)
+        c = vjax.journal_bearing(0.05, 5e-5, oil.viscosity, load, omega_shaft=100.0, temperature=60.0, **kw)
+        assert float(a.eccentricity) == float(b.eccentricity) == float(c.eccentricity)
+    with pytest.raises(ValueError, match="viscosity.*temperature="):
+        vjax.journal_bearing(0.05, 5e-5, oil, 2e4, omega_shaft=100.0)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+from ...materials.lubricant import Lubricant, as_lubricant
 from .finite import FiniteJournalResult, finite_journal_bearing
 from .finite.setup import check_supported
 from .long import JournalResult, long_journal_bearing
@@ -31,7 +32,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
 
     Args:
       R: bore radius R_B (m). radial_clearance: c = R_B - R_J (m), 0 < c < R.
-      viscosity: lubricant viscosity eta (Pa s), isoviscous.
+      viscosity: lubricant viscosity eta (Pa s), isoviscous; or a :class:`~vjax.Lubricant` (or a
+        function of the temperature in C returning Pa s), evaluated at ``temperature``.
       load: external force on the journal (N/m): a vector (Fx, Fy), or a magnitude with
         ``load_angle`` (rad, default -pi/2: downward).
       housing, shaft: bodies of the bearing and the journal: a :class:`~vjax.Material` (hole,
@@ -49,7 +51,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         of the infinitely long bearing) or "fixed" (in the bearing, as in a real bearing; the
         default of a finite one, which also takes "circumferential": a groove round the
         mid-width at ``supply_pressure``); see the module docstring.
-      temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``.
+      temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``, and a
+        :class:`~vjax.Lubricant` ``viscosity`` at ``temperature`` (then ``shift`` may be None).
       initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
       options: :class:`~vjax.JournalOptions` (grid, tolerance, iteration caps, strategy; static),
         or with ``length`` a :class:`~vjax.FiniteJournalOptions`; None: the film's defaults.
@@ -73,6 +76,13 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     >>> bool(sol.converged), 0 < float(sol.eccentricity) < 1
     (True, True)
     """
+    if isinstance(viscosity, Lubricant) or callable(viscosity):
+        if temperature is None:
+            raise ValueError("viscosity: a Lubricant (or a function of the temperature) is evaluated at the bearing's "
+                             "temperature: give temperature= (C)")
+        viscosity = as_lubricant(viscosity).viscosity(temperature)
+        if shift is None:           # the temperature is the oil's; the bodies (if any) keep their materials
+            temperature = None
     common = dict(housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
                   load_angle=load_angle, memory=memory, cavitation=cavitation, supply_angle=supply_angle,
                   supply_pressure=supply_pressure, temperature=temperature, shift=shift, initial=initial, throw=throw)
