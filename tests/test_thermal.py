@@ -353,3 +353,25 @@ def test_float32_runs_without_nan():
         assert np.isfinite(float(r.temperature)) and np.isfinite(float(r.power))
     finally:
         jax.config.update("jax_enable_x64", True)
+
+
+def test_long_bearing_per_unit_length_against_petroff():
+    """The infinitely long bearing at its effective temperature: no side leakage, so hA (W/(m K))
+    carries all of the power; lightly loaded, the power is Petroff's, 2 pi R_J eta(T) U^2 / c
+    per unit length (the eccentricity's correction, 1/sqrt(1 - eps^2) - 1, below 1e-4 here).
+    hA = inf is the isothermal scene; the oil flow is refused by name."""
+    w, hA = 300.0, 50.0
+    r = vjax.thermal_journal_bearing(RB, C, OIL, 50.0, thermal.HeatTransfer(T_supply=40.0, hA=hA, oil_flow=False),
+                                     omega_shaft=w)
+    RJ = RB - C
+    petroff = 2 * math.pi * RB * float(r.viscosity) * (w * RJ) ** 2 / C
+    eps = float(r.scene.eccentricity)
+    assert eps < 0.015
+    assert abs(float(r.power) / petroff - 1) < 1e-4 + 2 * eps ** 2
+    assert abs(float(r.power) / (hA * (float(r.temperature) - 40.0)) - 1) < 1e-10
+    iso = vjax.thermal_journal_bearing(RB, C, OIL, 50.0, thermal.HeatTransfer(T_supply=40.0, hA=jnp.inf, oil_flow=False),
+                                       omega_shaft=w)
+    ref = vjax.journal_bearing(RB, C, float(OIL.viscosity(40.0)), 50.0, omega_shaft=w)
+    assert float(iso.temperature) == 40.0 and float(iso.scene.eccentricity) == float(ref.eccentricity)
+    with pytest.raises(ValueError, match="side leakage"):
+        vjax.thermal_journal_bearing(RB, C, OIL, 50.0, thermal.HeatTransfer(T_supply=40.0), omega_shaft=w)

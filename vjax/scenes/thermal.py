@@ -310,7 +310,7 @@ def film_power(scene, R, radial_clearance, eta, omega_shaft, omega_housing, supp
     return -(omega_housing * T_B + omega_shaft * T_J), frac
 
 
-def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTransfer, *, length, housing=None,
+def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTransfer, *, length=None, housing=None,
                             shaft=None, shift=None, omega_shaft=0.0, omega_housing=0.0, supply_angle=math.pi,
                             supply_width=1.0, cavitation="reynolds", options=None, throw=True, tol=None,
                             max_iter=60, **scene_arguments) -> ThermalResult:
@@ -322,6 +322,11 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     hysteresis -- carried off by the side leakage, T_out = T_in + P_oil / (rho c_p Q), T_eff =
     (T_in + T_out) / 2 (no carry-over), and by ``heat.hA`` to ``heat.T_ambient``.
 
+    Without ``length`` the infinitely long bearing, per unit length: no side leakage, so the heat
+    leaves through ``heat.hA`` (W/(m K)) alone (``HeatTransfer(oil_flow=False)``), and its power
+    is -(omega_B torque + omega_J torque_shaft), the scene's torques (the cavity's film sheared
+    as full, as they count it).
+
     ``heat``: :class:`HeatTransfer`. ``tol`` (K): of |T - T*(T)| (None: ~1e-10 K in float64).
     ``max_iter``: scene solves. Other arguments as :func:`vjax.journal_bearing` (``throw``
     raises :class:`~vjax.ConvergenceError` on a failed balance or thermal runaway). Returns
@@ -332,6 +337,9 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         if name in scene_arguments:
             raise ValueError(f"{name}: not an argument of thermal_journal_bearing (the temperature is solved for; "
                              f"the viscosity is the lubricant's at it; mixed lubrication is not in the balance yet)")
+    if length is None and heat.oil_flow:
+        raise ValueError("heat: an infinitely long bearing (no length=) has no side leakage to carry heat: "
+                         "HeatTransfer(oil_flow=False, hA=...) with hA per unit length (W/(m K)), or give length=")
     if heat.oil_flow:
         lubricant.require("rho", "c_p")
     v = checks.values("omega_shaft", 0.5 * (omega_housing * R + omega_shaft * (R - radial_clearance)))
@@ -345,18 +353,22 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     def balance(T, p):
         eta = p["oil"].viscosity(T)
         at = dict(temperature=T, shift=p["shift"]) if deformable and p["shift"] is not None else {}
-        s = journal_bearing(p["R"], p["c"], eta, p["load"], length=p["L"], housing=p["housing"], shaft=p["shaft"],
+        finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width)
+        s = journal_bearing(p["R"], p["c"], eta, p["load"], housing=p["housing"], shaft=p["shaft"],
                             omega_shaft=p["wJ"], omega_housing=p["wB"], supply_angle=supply_angle,
-                            supply_width=supply_width, cavitation=cavitation, options=options, throw=False,
-                            **at, **scene_arguments)
-        P_film, _ = film_power(s, p["R"], p["c"], eta, p["wJ"], p["wB"], supply_angle, supply_width, cavitation)
+                            cavitation=cavitation, options=options, throw=False, **finite, **at, **scene_arguments)
         P_B, P_J = -p["wB"] * s.torque_viscoelastic, -p["wJ"] * s.torque_viscoelastic_shaft
-        P = P_film + P_B + P_J
+        if p["L"] is None:
+            P = -(p["wB"] * s.torque + p["wJ"] * s.torque_shaft)
+            P_film = P - P_B - P_J
+        else:
+            P_film, _ = film_power(s, p["R"], p["c"], eta, p["wJ"], p["wB"], supply_angle, supply_width, cavitation)
+            P = P_film + P_B + P_J
         h = p["heat"]
         G_oil = 2 * p["oil"].density(T) * p["oil"].c_p * s.side_leakage if h.oil_flow else 0.0
         T_star, heat_oil, convected = _removal(h, T, h.T_supply, G_oil, P)
         return dict(T_star=T_star, valid=s.converged, scene=s, P=P, P_film=P_film, P_B=P_B, P_J=P_J, eta=eta,
-                    heat_oil=heat_oil, convected=convected, Q=s.side_leakage)
+                    heat_oil=heat_oil, convected=convected, Q=0.0 if p["L"] is None else s.side_leakage)
 
     T, b, stats = _solve_balance(balance, params, heat.oil_flow, _default_tol(heat.T_supply, tol), max_iter)
     T_out = 2 * T - heat.T_supply if heat.oil_flow else T
