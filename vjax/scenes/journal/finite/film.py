@@ -72,11 +72,29 @@ def unknowns(cfg: Config):
 
 
 def asperity_unknowns(pr: Params, cfg: Config) -> int:
-    """How many asperity-pressure unknowns follow the position: one per node, n (m + 1), when
-    rough surfaces meet a deformable body (the asperity pressure loads the body, whose
-    deformation sets the gap the asperities see: an implicit pair, solved with the film); none
-    otherwise (rigid bodies: the asperity pressure follows the film explicitly)."""
-    return cfg.n * (cfg.m + 1) if pr.rough is not None and not is_rigid(pr) else 0
+    """How many asperity-pressure unknowns follow the position: one per node, n (m + 1) (a
+    half-width solve's: from mid-width to one end, :func:`node_columns`), when rough surfaces
+    meet a deformable body (the asperity pressure loads the body, whose deformation sets the
+    gap the asperities see: an implicit pair, solved with the film); none otherwise (rigid
+    bodies: the asperity pressure follows the film explicitly)."""
+    return cfg.n * node_columns(cfg) if pr.rough is not None and not is_rigid(pr) else 0
+
+
+def node_columns(cfg: Config):
+    """Axial columns of the node unknowns (the asperity pressure): all m + 1 nodes; in a
+    half-width solve the m / 2 + 1 from mid-width to the end."""
+    return cfg.m // 2 + 1 if cfg.half else cfg.m + 1
+
+
+def all_nodes(a, cfg: Config):
+    """Node values (n, m + 1) from the node unknowns' columns (n, :func:`node_columns`):
+    a half-width solve's mirrored about mid-width."""
+    return jnp.concatenate([a[:, :0:-1], a], axis=1) if cfg.half else a
+
+
+def own_nodes(a, cfg: Config):
+    """The node unknowns' columns of a node array (n, m + 1)."""
+    return a[:, cfg.m // 2:] if cfg.half else a
 
 
 def columns(cfg: Config):
@@ -110,7 +128,7 @@ def as_unknowns(scaled, position, pr: Params, cfg: Config, asperity=None):
     an absolute ``position`` (m) and the ``asperity`` pressure (n, m + 1) (Pa)."""
     x = jnp.concatenate([own_columns(scaled[:, 1:-1], cfg).ravel(), rotation(pr.frame).T @ position / pr.c])
     if asperity_unknowns(pr, cfg):
-        x = jnp.concatenate([x, asperity.ravel() / pr.p_ref])
+        x = jnp.concatenate([x, own_nodes(asperity, cfg).ravel() / pr.p_ref])
     return x
 
 
@@ -132,7 +150,7 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     p, fraction, p_load = loading(pz, pr, cfg, relaxed)
     e = pr.c * x[N:N + 2]
     implicit = asperity_unknowns(pr, cfg) > 0       # the asperity pressure an unknown (x's tail)
-    p_asp = x[N + 2:].reshape(n, m + 1) * pr.p_ref if implicit else None
+    p_asp = all_nodes(x[N + 2:].reshape(n, node_columns(cfg)), cfg) * pr.p_ref if implicit else None
     hdot = jnp.zeros((n, m + 1), x.dtype)
     if motion is not None:
         e = e + motion[:2]
@@ -148,7 +166,7 @@ def fields(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=N
     return dict(f, theta=theta, z=z, pz=pz, p=p, h=h, hdot=hdot, e=e, p_load=p_load, uB=uB, uJ=uJ,
                 fraction=fraction, p_asp=gap_pressure if p_asp is None else p_asp,
                 # the asperity unknowns' equations: the pressure the gap gives, over p_ref
-                asperity_residual=None if p_asp is None else ((p_asp - gap_pressure) / pr.p_ref).ravel())
+                asperity_residual=None if p_asp is None else own_nodes((p_asp - gap_pressure) / pr.p_ref, cfg).ravel())
 
 
 def sliding(pr: Params):
@@ -197,7 +215,7 @@ def deformations(p_load, pr: Params, z):
 
 def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deformation=None, rate=None,
                   subcell=1.0):
-    """Scaled cell equations (n (m - 1),; followed by the asperity unknowns' equations, n (m + 1),
+    """Scaled cell equations (n (m - 1),; followed by the asperity unknowns' equations, n node_columns,
     when there are some, :func:`asperity_unknowns`), the force of the film and the asperities on the
     journal (N, grid axes) and the film's margin (m, positive where the model holds,
     :func:`margin`); the

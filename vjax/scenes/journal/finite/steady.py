@@ -17,7 +17,7 @@ from .... import reference
 from ....bodies.operator import grid
 from ....films import film2d, reynolds
 from ..options import FiniteJournalOptions
-from .film import (Config, Params, as_unknowns, asperity_unknowns, equations, fields, is_rigid, linear_model,
+from .film import (Config, Params, as_unknowns, asperity_unknowns, equations, fields, is_rigid, linear_model, own_nodes,
                    own_columns,
                    solved_by_linear_model, unknowns)
 from .outputs import FiniteJournalResult, outputs
@@ -106,7 +106,7 @@ def _guess(pr: Params, cfg: Config):
     x = jnp.concatenate([own_columns(p, cfg).ravel(), jnp.stack([position.real, position.imag])])
     if asperity_unknowns(pr, cfg):      # the asperities at the rigid film of that position
         rigid = film2d.film(theta, 0.5 * L * pr.s, c, c * x[-2:], pr.tilt)
-        x = jnp.concatenate([x, pr.rough.asperity_pressure(rigid).ravel() / pr.p_ref])
+        x = jnp.concatenate([x, own_nodes(pr.rough.asperity_pressure(rigid), cfg).ravel() / pr.p_ref])
     return x
 
 
