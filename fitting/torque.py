@@ -21,8 +21,12 @@ divided by the bearing's length). The scenes carry implicit derivatives, so the
 gradient of the torque with respect to the material is one linear solve per solve at the
 converged state, not a differentiation through iterations.
 
-Parameters (:class:`Params`): log E0, log E_k, optionally log tau_k, log C1, log C2. The
-fit works on the logarithms: positivity is automatic and a step means the same relative
+Parameters (:class:`Params`): log E0, log E_k, optionally log tau_k, log C1, log C2, and
+optionally scene parameters (``extras``): mixed lubrication's boundary friction coefficient
+mu_b and composite rms roughness sigma (a :func:`journal_model` with ``roughness=``, torque
+along a Stribeck curve through lift-off), or the rig's heat transfer hA (a model with
+``heat_transfer=``: the scene at the effective temperature its own dissipation sets, the
+data's T the supply/ambient temperature). The fit works on the logarithms: positivity is automatic and a step means the same relative
 change for a 1e9 Pa modulus and a C1 of 20.
 
 Objective (dimensionless, a chi^2 per torque point)::
@@ -205,33 +209,70 @@ def write_torque_csv(path, data: TorqueData, comments=()) -> None:
 
 # ---- bearing models --------------------------------------------------------------------
 def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, n=256, memory="periodic",
-                 diametral_clearance=None):
+                 diametral_clearance=None, heat_transfer=None):
     """Needle roller bearing (:func:`vjax.roller_bearing`), both rings of the fitted material,
     outer ring fixed, shaft (inner ring) at the given rpm; returns the friction torque on the
-    outer ring (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
-    options = vjax.RollerOptions(n=n)
+    outer ring (N m/m, positive). Signature ``model(material, shift, rpm, T, load[, hA=])``.
 
-    def model(material, shift, rpm, T, load):
-        r = vjax.roller_bearing(material, material, R_outer, R_inner, roller_diameter, n_rollers, load,
-                                omega_shaft=rpm * (2 * jnp.pi / 60.0), diametral_clearance=diametral_clearance,
-                                memory=memory, temperature=T, shift=shift, options=options, throw=False)
-        return r.torque, r.converged
+    ``heat_transfer``: None (isothermal: the rings at the data's T) or hA (W/(m K), per unit
+    axial length, > 0; inf is the isothermal limit): the rings at the bulk temperature their own
+    hysteresis sets (:func:`vjax.thermal_roller`), cooled by hA to the data's T, then the
+    ambient temperature. The model's keyword ``hA`` overrides it (fitting log hA)."""
+    options = vjax.RollerOptions(n=n)
+    _check_heat(heat_transfer)
+
+    def model(material, shift, rpm, T, load, hA=None):
+        kw = dict(omega_shaft=rpm * (2 * jnp.pi / 60.0), diametral_clearance=diametral_clearance, memory=memory,
+                  shift=shift, options=options, throw=False)
+        hA = heat_transfer if hA is None else hA
+        if hA is None:
+            r = vjax.roller_bearing(material, material, R_outer, R_inner, roller_diameter, n_rollers, load,
+                                    temperature=T, **kw)
+            return r.torque, r.converged
+        t = vjax.thermal_roller(material, material, R_outer, R_inner, roller_diameter, n_rollers, load,
+                                vjax.HeatTransfer(T_supply=T, hA=hA, oil_flow=False), **kw)
+        return t.scene.torque, t.converged & t.scene.converged
+    model.extras = () if heat_transfer is None else ("hA",)
     model.scene = (f"roller_bearing(R_O={R_outer}, R_I={R_inner}, D={roller_diameter}, Z={n_rollers}, n={n}, "
-                   f"memory={memory!r}, diametral_clearance={diametral_clearance})")
+                   f"memory={memory!r}, diametral_clearance={diametral_clearance}"
+                   + _heat_text(heat_transfer, "W/(m K)") + ")")
     return model
 
 
-def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic"):
+def _check_heat(hA):
+    if hA is not None and not (isinstance(hA, (int, float)) and hA > 0):
+        raise ValueError(f"heat_transfer must be None (isothermal) or a number hA > 0 (inf: the isothermal "
+                         f"limit), got {hA!r}")
+
+
+def _heat_text(hA, unit):
+    return "" if hA is None else f", heat: hA={hA:g} {unit} to the data's T"
+
+
+def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic", heat_transfer=None):
     """Polymer pin joint (:func:`vjax.pin_in_hole`): rigid pin of radius R - radial_clearance
     turning at the given rpm in a hole of radius R in a plate of the fitted material; returns
-    the friction torque (N m/m, positive). Signature ``model(material, shift, rpm, T, load)``."""
-    options = vjax.PinOptions(n=n)
+    the friction torque (N m/m, positive). Signature ``model(material, shift, rpm, T, load[, hA=])``.
 
-    def model(material, shift, rpm, T, load):
-        r = vjax.pin_in_hole(material, R, radial_clearance, load, omega_shaft=rpm * (2 * jnp.pi / 60.0),
-                             memory=memory, temperature=T, shift=shift, options=options, throw=False)
-        return r.torque, r.converged
-    model.scene = f"pin_in_hole(R={R}, radial_clearance={radial_clearance}, n={n}, memory={memory!r})"
+    ``heat_transfer``: None (isothermal at the data's T) or hA (W/(m K), per unit axial length,
+    > 0; inf: the isothermal limit): the plate at the bulk temperature its hysteresis sets
+    (:func:`vjax.thermal_pin`: -Omega torque = hA (T_eff - T)), the data's T the ambient
+    temperature. The model's keyword ``hA`` overrides it (fitting log hA)."""
+    options = vjax.PinOptions(n=n)
+    _check_heat(heat_transfer)
+
+    def model(material, shift, rpm, T, load, hA=None):
+        kw = dict(omega_shaft=rpm * (2 * jnp.pi / 60.0), memory=memory, shift=shift, options=options, throw=False)
+        hA = heat_transfer if hA is None else hA
+        if hA is None:
+            r = vjax.pin_in_hole(material, R, radial_clearance, load, temperature=T, **kw)
+            return r.torque, r.converged
+        t = vjax.thermal_pin(material, R, radial_clearance, load, vjax.HeatTransfer(T_supply=T, hA=hA, oil_flow=False),
+                             **kw)
+        return t.scene.torque, t.converged & t.scene.converged
+    model.extras = () if heat_transfer is None else ("hA",)
+    model.scene = (f"pin_in_hole(R={R}, radial_clearance={radial_clearance}, n={n}, memory={memory!r}"
+                   + _heat_text(heat_transfer, "W/(m K)") + ")")
     return model
 
 
@@ -244,21 +285,22 @@ def water_viscosity(T):
     return Lubricant.water().viscosity(T)
 
 
-def oil_viscosity(nu40, nu100, density=860.0):
+def oil_viscosity(nu40, nu100, density=860.0, specific_heat=2000.0):
     """The dynamic viscosity (Pa s) of a mineral oil as a function of the temperature T (C):
     Walther's equation (ASTM D341), log10 log10(nu + 0.7) linear in log10 T (K), through the
     oil's kinematic viscosities ``nu40`` and ``nu100`` (cSt = mm^2/s) at 40 and 100 C (its data
     sheet's), times its ``density`` (kg/m^3, held constant). An ISO VG 32 oil of viscosity
     index about 100: ``oil_viscosity(32, 5.4)``, 0.0275 Pa s at 40 C and 0.0096 at 70 C.
     Traceable in T (jit, grad). The function delegates to (and carries as ``.lubricant``) a
-    :meth:`Lubricant.walther <vjax.materials.lubricant.Lubricant.walther>`."""
+    :meth:`Lubricant.walther <vjax.materials.lubricant.Lubricant.walther>`, with the oil's
+    ``specific_heat`` (J/(kg K), default 2000, a mineral oil's) for the thermal balance."""
     from vjax import checks
     from vjax.materials.lubricant import Lubricant
-    for name, v in (("nu40", nu40), ("nu100", nu100), ("density", density)):
+    for name, v in (("nu40", nu40), ("nu100", nu100), ("density", density), ("specific_heat", specific_heat)):
         checks.positive(name, v)
     if not nu100 < nu40:
         raise ValueError(f"nu100 must be below nu40 (an oil thins when heated), got nu40={nu40}, nu100={nu100}")
-    lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=density)
+    lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=density, c_p=specific_heat)
 
     def viscosity(T):
         return lubricant.viscosity(T)
@@ -271,20 +313,22 @@ _TURNING = ("liner", "shaft")
 
 
 def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, viscosity=water_viscosity,
-                  turning="liner", n=32, m=8, memory="periodic"):
+                  turning="liner", n=32, m=8, memory="periodic", roughness=None, heat_transfer=None,
+                  supply_angle=math.pi):
     """Finite journal bearing with a liner of the fitted material (:func:`vjax.journal_bearing`
     with ``length=``, housing :func:`vjax.liner`): bore radius ``R``, ``radial_clearance``,
     axial ``length``, liner ``thickness`` (m) bonded in a rigid housing, rigid shaft, axial
-    groove at ambient pressure opposite the load, Reynolds cavitation, ``n`` x ``m`` film cells.
+    groove at ambient pressure at ``supply_angle`` from the load (default opposite it; None: no
+    groove), Reynolds cavitation, ``n`` x ``m`` film cells.
 
     Units: the CSV (and so ``load`` and the returned torque) are per unit axial length, as for
     the other scenes: a rig's total load (N) and total friction torque (N m) divided by
     ``length``. The model multiplies the load by ``length`` for the bearing and divides the
     bearing's total torque by it.
 
-    ``viscosity``: the lubricant's viscosity (Pa s), a number (held fixed) or a function of the
+    ``viscosity``: the lubricant's viscosity (Pa s), a number (held fixed), a function of the
     temperature (C) (default :func:`water_viscosity`: a water-lubricated bearing; an oil's:
-    :func:`oil_viscosity`).
+    :func:`oil_viscosity`) or a :class:`vjax.Lubricant`.
 
     ``turning``: which side turns at the given rpm; the friction torque returned is the one on
     the stationary side (what a torque arm on it measures), positive in the sense of rotation.
@@ -294,7 +338,24 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     turns in a fixed lined housing; the liner then carries a pressure field at rest, its steady
     response is the relaxed one (E0 alone), and the torque carries no information about the
     Prony terms or the shift law (their torque derivatives are exactly zero) - use it to fit E0
-    only. Signature ``model(material, shift, rpm, T, load)``."""
+    only.
+
+    ``roughness``: a :class:`vjax.Roughness` (mixed lubrication: Patir-Cheng flow factors,
+    Greenwood-Tripp asperities, boundary friction ``mu_b``; its ``Vr`` is -1 for a rough bore
+    (the liner) and a smooth shaft whichever side turns): the torque follows the Stribeck curve
+    through lift-off. The model's keywords ``mu_b`` and ``sigma`` (m) replace
+    the roughness's (fitting them; E', eta_s beta sigma and sigma/beta stay as given).
+
+    ``heat_transfer``: None (isothermal: film and liner at the data's T) or hA (W/K, > 0; inf:
+    the isothermal limit): the bearing at its effective temperature
+    (:func:`vjax.thermal_journal_bearing`, ISO 7902's balance): the data's T is then the supply
+    (and ambient) temperature, the heat leaves with the side leakage (when the lubricant has a
+    density and specific heat: :func:`oil_viscosity`, :meth:`vjax.Lubricant.water`) and through
+    hA. The model's keyword ``hA`` overrides it (fitting log hA). Not with ``roughness`` (the
+    thermal balance has no asperity friction yet).
+
+    Signature ``model(material, shift, rpm, T, load, **extras)``, ``model.extras`` the names
+    of the keywords it takes ("mu_b", "sigma" with a roughness; "hA" with a heat transfer)."""
     from vjax import checks
     for name, v in (("R", R), ("radial_clearance", radial_clearance), ("length", length),
                     ("thickness", thickness)):
@@ -304,32 +365,80 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     checks.one_of("turning", turning, _TURNING)
     if not callable(viscosity):
         checks.positive("viscosity", viscosity)
+    if roughness is not None and not isinstance(roughness, vjax.Roughness):
+        raise ValueError(f"roughness must be a vjax.Roughness or None, got {type(roughness).__name__}")
+    _check_heat(heat_transfer)
+    if roughness is not None and heat_transfer is not None:
+        raise ValueError("roughness and heat_transfer: the thermal balance has no asperity friction yet; give one")
+    lubricant = _lubricant(viscosity) if heat_transfer is not None else None
     eta = viscosity if callable(viscosity) else (lambda T, v=float(viscosity): v)
     options = vjax.FiniteJournalOptions(n=n, m=m)
 
-    def model(material, shift, rpm, T, load):
+    def model(material, shift, rpm, T, load, mu_b=None, sigma=None, hA=None):
         w = rpm * (2 * jnp.pi / 60.0)
         speeds = dict(omega_housing=w) if turning == "liner" else dict(omega_shaft=w)
-        r = vjax.journal_bearing(R, radial_clearance, eta(T), load * length, length=length,
-                                 housing=vjax.liner(material, thickness), memory=memory, temperature=T, shift=shift,
-                                 options=options, throw=False, **speeds)
+        kw = dict(length=length, housing=vjax.liner(material, thickness), memory=memory, shift=shift,
+                  options=options, throw=False, supply_angle=supply_angle, **speeds)
+        hA = heat_transfer if hA is None else hA
+        if hA is not None:
+            heat = vjax.HeatTransfer(T_supply=T, hA=hA, oil_flow=lubricant.c_p is not None)
+            t = vjax.thermal_journal_bearing(R, radial_clearance, lubricant, load * length, heat, **kw)
+            r, ok = t.scene, t.converged & t.scene.converged
+        else:
+            rough = roughness
+            if rough is not None and (mu_b is not None or sigma is not None):
+                rough = dataclasses.replace(rough, **({} if mu_b is None else dict(mu_b=mu_b)),
+                                            **({} if sigma is None else dict(sigma=sigma)))
+            r = vjax.journal_bearing(R, radial_clearance, eta(T), load * length, temperature=T, roughness=rough, **kw)
+            ok = r.converged
         # the stationary side: the shaft when the liner turns, the housing when the shaft does
         tq = r.torque_shaft if turning == "liner" else r.torque
-        return tq / length, r.converged
+        return tq / length, ok
     model.sequential = True       # the soft liner's solve falls back on continuation: no vmap over points
+    model.extras = ("mu_b", "sigma") if roughness is not None else ("hA",) if heat_transfer is not None else ()
     visc = getattr(viscosity, "__name__", None) if callable(viscosity) else viscosity
+    if isinstance(viscosity, vjax.Lubricant):
+        visc = viscosity.name or viscosity.law
+    rough_text = "" if roughness is None else (f", roughness: sigma={float(roughness.sigma):.4g} m, "
+                                               f"mu_b={float(roughness.mu_b):.4g}, E'={float(roughness.E):.4g} Pa")
     model.scene = (f"journal_bearing(R={R}, radial_clearance={radial_clearance}, length={length}, liner "
-                   f"thickness={thickness}, viscosity={visc}, turning={turning!r}, n={n}, m={m}, memory={memory!r})")
+                   f"thickness={thickness}, viscosity={visc}, turning={turning!r}, n={n}, m={m}, memory={memory!r}"
+                   f"{rough_text}{_heat_text(heat_transfer, 'W/K')})")
     return model
 
 
+def _lubricant(viscosity):
+    """The :class:`vjax.Lubricant` behind ``viscosity`` for the thermal balance: itself, an
+    :func:`oil_viscosity`'s, water's for :func:`water_viscosity`, a constant one for a number
+    (no heat carried by the oil then: hA alone)."""
+    from vjax.materials.lubricant import Lubricant
+    if isinstance(viscosity, Lubricant):
+        return viscosity
+    if getattr(viscosity, "lubricant", None) is not None:
+        return viscosity.lubricant
+    if viscosity is water_viscosity:
+        return Lubricant.water()
+    if callable(viscosity):
+        return Lubricant.from_function(viscosity)
+    return Lubricant.constant(float(viscosity))
+
+
 # ---- parameters ------------------------------------------------------------------------
+# the scene parameters a model may take as keywords, fitted on their logarithms: mixed
+# lubrication's boundary friction coefficient and composite rms roughness (m); the rig's heat
+# transfer coefficient times area (W/K for the journal, W/(m K) for the pin and roller)
+EXTRAS = ("mu_b", "sigma", "hA")
+
+
 @dataclasses.dataclass(frozen=True)
 class Params:
-    """Log-parametrization of a Prony material + WLF shift.
+    """Log-parametrization of a Prony material + WLF shift, and of scene parameters.
 
-    x = [log E0, log E_1..E_K, (log tau_1..tau_K if fit_times), log C1, log C2]; T_ref and nu
-    are fixed. :meth:`unpack` builds the material and shift from x inside jit (no checks).
+    x = [log E0, log E_1..E_K, (log tau_1..tau_K if fit_times), log C1, log C2, log extras...];
+    T_ref and nu are fixed; ``extras`` names scene parameters of :data:`EXTRAS` fitted with the
+    material ("mu_b", "sigma" of a rough journal model; "hA" of a thermal model), passed to the
+    model as keywords. :meth:`unpack` builds the material and shift from x inside jit (no
+    checks), :meth:`unpack_extras` the keywords.
     """
 
     K: int
@@ -337,56 +446,95 @@ class Params:
     times: np.ndarray
     nu: float
     T_ref: float
+    extras: tuple = ()
 
     @classmethod
-    def of(cls, material: Material, shift: WLF, fit_times: bool = False):
+    def of(cls, material: Material, shift: WLF, fit_times: bool = False, extras=()):
         if not isinstance(shift, WLF):
             raise ValueError(f"torque fitting refines a WLF shift law, got {type(shift).__name__}")
+        extras = tuple(extras)
+        for e in extras:
+            if e not in EXTRAS:
+                raise ValueError(f"extras: {e!r} is not a fittable scene parameter; choose from {EXTRAS}")
+        if len(set(extras)) != len(extras):
+            raise ValueError(f"extras: a name repeated in {extras}")
         return cls(int(material.moduli.shape[0]), bool(fit_times), np.asarray(material.times, float),
-                   float(material.nu), float(shift.T_ref))
+                   float(material.nu), float(shift.T_ref), extras)
+
+    @property
+    def n_material(self):
+        """Number of material and shift log-parameters (the extras follow them in x)."""
+        return 1 + self.K * (2 if self.fit_times else 1) + 2
 
     def names(self):
         K = self.K
         n = ["E0"] + [f"E_{k + 1}" for k in range(K)]
         if self.fit_times:
             n += [f"tau_{k + 1}" for k in range(K)]
-        return n + ["C1", "C2"]
+        return n + ["C1", "C2"] + list(self.extras)
 
-    def pack(self, material: Material, shift: WLF) -> np.ndarray:
+    def pack(self, material: Material, shift: WLF, extras=None) -> np.ndarray:
+        """x from the material, shift and a dict of the extras' values (> 0)."""
         parts = [[float(material.E0)], np.asarray(material.moduli, float)]
         if self.fit_times:
             parts.append(np.asarray(material.times, float))
         parts.append([float(shift.C1), float(shift.C2)])
+        extras = extras or {}
+        missing = [e for e in self.extras if e not in extras]
+        if missing:
+            raise ValueError(f"extras: no start value for {missing}")
+        for e in self.extras:
+            if not (float(extras[e]) > 0 and math.isfinite(float(extras[e]))):
+                raise ValueError(f"extras: {e} must be a finite number > 0 to be fitted on its logarithm, "
+                                 f"got {extras[e]!r}")
+        parts.append([float(extras[e]) for e in self.extras])
         return np.log(np.concatenate([np.ravel(p) for p in parts]))
 
     def unpack(self, x):
-        K = self.K
+        K, n = self.K, self.n_material
         v = jnp.exp(x)
         tau = v[1 + K:1 + 2 * K] if self.fit_times else jnp.asarray(self.times)
         mat = Material(v[0], v[1:1 + K], tau, jnp.asarray(self.nu, v.dtype))
-        return mat, WLF(v[-2], v[-1], jnp.asarray(self.T_ref, v.dtype))
+        return mat, WLF(v[n - 2], v[n - 1], jnp.asarray(self.T_ref, v.dtype))
+
+    def unpack_extras(self, x):
+        """The extras' values (dict name -> value) from x (traceable)."""
+        v = jnp.exp(x[self.n_material:])
+        return {e: v[i] for i, e in enumerate(self.extras)}
 
     def physical(self, x):
         """(Material, WLF) with concrete, checked values."""
         v = np.exp(np.asarray(x, float))
-        K = self.K
+        K, n = self.K, self.n_material
         tau = v[1 + K:1 + 2 * K] if self.fit_times else self.times
-        return Material.prony(v[0], v[1:1 + K], tau, self.nu), WLF(float(v[-2]), float(v[-1]), self.T_ref)
+        return (Material.prony(v[0], v[1:1 + K], tau, self.nu),
+                WLF(float(v[n - 2]), float(v[n - 1]), self.T_ref))
+
+    def physical_extras(self, x):
+        """The extras' values (dict name -> float)."""
+        return {e: float(v) for e, v in zip(self.extras, np.exp(np.asarray(x, float)[self.n_material:]))}
 
 
 # ---- objective -------------------------------------------------------------------------
-def evaluate(model, material, shift, rpm, T, load):
-    """(torque, converged) of ``model`` at the points (arrays rpm, T, load): batched by vmap,
+def evaluate(model, material, shift, rpm, T, load, extras=None):
+    """(torque, converged) of ``model`` at the points (arrays rpm, T, load), with the scene
+    keywords ``extras`` (dict, e.g. mu_b, sigma, hA; the same at every point): batched by vmap,
     or one point after the other when ``model.sequential`` (the journal: its solve's fallbacks,
     restarts and continuation, are branches, which vmap turns into selects that run every
     branch for every point)."""
-    point = lambda a, b, c: model(material, shift, a, b, c)     # noqa: E731
+    extras = extras or {}
+    point = lambda a, b, c: model(material, shift, a, b, c, **extras)     # noqa: E731
     if getattr(model, "sequential", False):
         return jax.lax.map(lambda p: point(*p), (rpm, T, load))
     return jax.vmap(point)(rpm, T, load)
 
 
 def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table, w_dma, s_dma):
+    unknown = [e for e in params.extras if e not in getattr(model, "extras", ())]
+    if unknown:
+        raise ValueError(f"extras: the model ({getattr(model, 'scene', model)}) takes no {unknown}; it takes "
+                         f"{list(getattr(model, 'extras', ())) or 'none'} (a roughness= gives mu_b and sigma, a "
+                         f"heat_transfer= gives hA)")
     rpm, T, load = (jnp.asarray(a) for a in (data.rpm, data.T, data.load))
     meas = jnp.asarray(data.torque)
     sig = jnp.asarray(data.sigma(rel_scatter))
@@ -397,7 +545,7 @@ def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table
 
     def residuals(x):
         mat, shift = params.unpack(x)
-        tq, ok = evaluate(model, mat, shift, rpm, T, load)
+        tq, ok = evaluate(model, mat, shift, rpm, T, load, params.unpack_extras(x))
         r_t = (tq - meas) / sig
         if dma_table is not None:
             r_d = math.sqrt(w_dma) * log_residual(mat, shift, dma_table) / s_dma
@@ -474,7 +622,8 @@ class TorqueFit:
     model torque at the data points before/after. converged: all scene solves converged at
     the final point. cov: Gauss-Newton covariance of x (torque + DMA terms). sd: its
     standard deviations (relative errors of the parameters). ident: :func:`identifiability`
-    of the torque term alone at the final point.
+    of the torque term alone at the final point. extras: the fitted scene parameters (dict,
+    e.g. mu_b, sigma in m, hA in W/K).
     """
 
     material: Material
@@ -495,6 +644,7 @@ class TorqueFit:
     cov: np.ndarray
     sd: np.ndarray
     ident: dict
+    extras: dict = dataclasses.field(default_factory=dict)
 
     def table(self, truth=None):
         """Rows (name, before, after, sd_rel, [truth, err_before, err_after]) with values in
@@ -511,7 +661,7 @@ class TorqueFit:
 
 
 def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_table=None, w_dma=1.0,
-               s_dma=0.02, rel_scatter=0.05, fit_times=False, steps=100, lr=0.05, lr_end=0.005,
+               s_dma=0.02, rel_scatter=0.05, fit_times=False, extras=None, steps=100, lr=0.05, lr_end=0.005,
                gtol=1e-6, polish=20, progress=True, every=5, log=None) -> TorqueFit:
     """Refine ``material`` and its WLF ``shift`` against the torque ``data`` (see module docs).
 
@@ -523,6 +673,9 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
         ``w_dma``, scatter ``s_dma`` (decades of log10 modulus).
       rel_scatter: torque scatter relative to the torque when the data have none.
       fit_times: also refine the relaxation times (the torque rarely identifies them).
+      extras: scene parameters fitted with the material, a dict of start values (> 0) by name
+        (:data:`EXTRAS`: ``mu_b`` and ``sigma`` (m) of a journal model with a roughness, ``hA``
+        of a model with a heat transfer); None or {}: the material alone.
       steps, lr, lr_end: Adam iterations and a cosine-decayed learning rate (log units).
       gtol: stop when the gradient norm falls below it.
       polish: at most this many Levenberg-Marquardt iterations after Adam (0: none).
@@ -532,9 +685,10 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     import optax
 
     log = log or sys.stderr
-    params = Params.of(material, shift, fit_times)
+    extras = dict(extras or {})
+    params = Params.of(material, shift, fit_times, tuple(extras))
     names = params.names()
-    x0 = params.pack(material, shift)
+    x0 = params.pack(material, shift, extras)
     jac_fn, _ = residual_jacobian(params, model, data, rel_scatter, dma_table, w_dma, s_dma)
     Nt = len(data)
     t0 = time.perf_counter()
@@ -611,7 +765,8 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
     ident = identifiability(Jn[:Nt], names)
     mat, sh = params.physical(np.asarray(x))
     return TorqueFit(mat, sh, params, names, np.asarray(x0), np.asarray(x), history, it, wall, compile_time,
-                     loss0, loss, np.asarray(tq0), np.asarray(tq), bool(np.all(np.asarray(ok))), cov, sd, ident)
+                     loss0, loss, np.asarray(tq0), np.asarray(tq), bool(np.all(np.asarray(ok))), cov, sd, ident,
+                     params.physical_extras(np.asarray(x)))
 
 
 def gradient_check(params: Params, model, data: TorqueData, x, *, rel_scatter=0.05, dma_table=None, w_dma=0.0,

@@ -14,6 +14,13 @@ it), ``<stem>_torque.png`` and ``<stem>_moduli.png`` (before/after). Exit codes:
 1 bad input or a fit whose bearing solves did not converge (nothing written), 2 bad command
 line. Every file goes through a temporary file and ``os.replace``.
 
+Self-heating: ``--heat-transfer HA`` runs every scene at the effective temperature its own
+dissipation sets (the CSV's temperature is then the ambient and oil supply temperature; hA in
+W/K for a journal bearing, W/(m K) per unit length for pin and roller), ``--fit-heat-transfer``
+fits log hA with the material. Mixed lubrication (journal): ``--roughness SIGMA
+--asperity-modulus E_PRIME [--mu-b MU]`` for a rough bore; ``--fit-friction`` fits mu_b and
+sigma with the material. The fitted values go to the JSON's ``fit`` record and the params CSV.
+
 Example (the roller twin's data)::
 
     vjax-fit-torque experiments/out/torque_twin_roller_data.csv \\
@@ -61,6 +68,23 @@ def _parser():
                    help="the side turning at speed_rpm (default liner: the lined housing on a fixed shaft; "
                         "shaft: the torque then identifies E0 only)")
     g.add_argument("--m", type=int, default=8, help="axial film cells (even, default 8)")
+    g.add_argument("--roughness", type=float, default=None, metavar="SIGMA",
+                   help="mixed lubrication: the composite rms roughness sigma (m) of a rough bore and smooth shaft "
+                        "(Patir-Cheng, Greenwood-Tripp; the torque then follows the Stribeck curve); needs "
+                        "--asperity-modulus")
+    g.add_argument("--mu-b", type=float, default=0.1, help="boundary friction coefficient with --roughness (default 0.1)")
+    g.add_argument("--asperity-modulus", type=float, default=None, metavar="E_PRIME",
+                   help="the asperities' composite modulus E' (Pa), 1/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2, with --roughness")
+    g.add_argument("--fit-friction", action="store_true",
+                   help="also fit mu_b and sigma (log), starting from --mu-b and --roughness")
+    g = p.add_argument_group("self-heating (every scene)")
+    g.add_argument("--heat-transfer", type=float, default=None, metavar="HA",
+                   help="the rig's heat transfer coefficient times area to the CSV's temperature, which becomes the "
+                        "ambient (and oil supply) temperature: the scene runs at the effective temperature its own "
+                        "dissipation sets (W/K for --scene journal, whose oil's side leakage also carries heat; "
+                        "W/(m K) per unit length for pin and roller); inf: isothermal")
+    g.add_argument("--fit-heat-transfer", action="store_true",
+                   help="also fit log hA, starting from --heat-transfer")
     p.add_argument("--n", type=int, default=None,
                    help="elements per ring (default 256 roller, 128 pin), film cells round a journal (default 32)")
     p.add_argument("--dma", nargs="+", default=None, metavar="FILE", help="DMA files for the consistency term")
@@ -78,14 +102,29 @@ def _parser():
 
 def _model(args):
     from . import torque as ft
-    if args.scene == "roller":
-        return ft.roller_model(args.R_outer, args.R_inner, args.roller_diameter, args.rollers,
-                               n=args.n or 256, diametral_clearance=args.diametral_clearance)
+    hA = args.heat_transfer
     if args.scene == "journal":
         viscosity = args.viscosity or (ft.oil_viscosity(*_oil(args.oil)) if args.oil else ft.water_viscosity)
+        rough = None
+        if args.roughness is not None:
+            import vjax
+            rough = vjax.Roughness(args.roughness, args.asperity_modulus, mu_b=args.mu_b)
         return ft.journal_model(args.R or 0.025, args.radial_clearance or 5e-5, args.length, args.thickness,
-                                viscosity, args.turning, n=args.n or 32, m=args.m)
-    return ft.pin_model(args.R or 0.01, args.radial_clearance or 1e-4, n=args.n or 128)
+                                viscosity, args.turning, n=args.n or 32, m=args.m, roughness=rough, heat_transfer=hA)
+    if args.scene == "roller":
+        return ft.roller_model(args.R_outer, args.R_inner, args.roller_diameter, args.rollers,
+                               n=args.n or 256, diametral_clearance=args.diametral_clearance, heat_transfer=hA)
+    return ft.pin_model(args.R or 0.01, args.radial_clearance or 1e-4, n=args.n or 128, heat_transfer=hA)
+
+
+def _extras(args):
+    """Start values of the scene parameters fitted with the material."""
+    extras = {}
+    if args.fit_friction:
+        extras.update(mu_b=args.mu_b, sigma=args.roughness)
+    if args.fit_heat_transfer:
+        extras["hA"] = args.heat_transfer
+    return extras
 
 
 def _oil(text):
@@ -107,6 +146,29 @@ def _check_args(args):
             return f"--oil must be NU40,NU100[,DENSITY] (cSt, cSt, kg/m^3), got {args.oil!r}"
         if not all(0 < v < float("inf") for v in values) or not values[1] < values[0]:
             return f"--oil: NU40 > NU100 > 0 and DENSITY > 0, finite, got {args.oil!r}"
+    if args.heat_transfer is not None:
+        if not args.heat_transfer > 0:        # NaN fails too
+            return f"--heat-transfer must be a number hA > 0 (W/K, or W/(m K) per unit length; inf: isothermal), " \
+                   f"got {args.heat_transfer}"
+        if args.fit_heat_transfer and args.heat_transfer == float("inf"):
+            return "--fit-heat-transfer needs a finite --heat-transfer to start from (log hA is fitted), got inf"
+    elif args.fit_heat_transfer:
+        return "--fit-heat-transfer needs --heat-transfer HA, the start value (W/K, or W/(m K) per unit length)"
+    if args.roughness is not None or args.fit_friction:
+        if args.scene != "journal":
+            return "--roughness and --fit-friction are for --scene journal (mixed lubrication of the film)"
+        if args.roughness is None:
+            return "--fit-friction needs --roughness SIGMA, the start value (m)"
+        if args.asperity_modulus is None:
+            return "--roughness needs --asperity-modulus E_PRIME (Pa), the asperities' composite modulus"
+        if args.heat_transfer is not None:
+            return "--roughness and --heat-transfer: the thermal balance has no asperity friction yet; give one"
+        for name in ("roughness", "asperity_modulus"):
+            v = getattr(args, name)
+            if not (v > 0 and v < float("inf")):
+                return f"--{name.replace('_', '-')} must be a finite number > 0, got {v}"
+        if not (args.mu_b > 0 and args.mu_b < float("inf")):
+            return f"--mu-b must be a finite number > 0, got {args.mu_b}"
     for name in ("steps", "polish"):
         if getattr(args, name) < 0:
             return f"--{name} must be >= 0, got {getattr(args, name)}"
@@ -176,8 +238,8 @@ def main(argv=None) -> int:
         material, table = _tensile(material, modulus, table)
         model = _model(args)
         fit = ft.fit_torque(data, material, shift, model, dma_table=table, w_dma=args.w_dma if table else 0.0,
-                            rel_scatter=args.rel_scatter, fit_times=args.fit_times, steps=args.steps, lr=args.lr,
-                            polish=args.polish)
+                            rel_scatter=args.rel_scatter, fit_times=args.fit_times, extras=_extras(args),
+                            steps=args.steps, lr=args.lr, polish=args.polish)
         if not fit.converged:
             raise ValueError(f"some bearing solves did not converge at the fitted material ({model.scene}); "
                              "nothing written. Check the geometry, loads and start material; a smaller --lr "
@@ -201,7 +263,7 @@ def main(argv=None) -> int:
         sd = {n: float(s) for n, s in zip(fit.names, fit.sd)}
         io.save_material(out, fit.material, fit.shift, uncertainty={"sd_rel": sd},
                          fit={"scene": model.scene, "data": os.path.abspath(args.data), "loss": fit.loss,
-                              "loss_start": fit.loss0, "iterations": fit.iterations})
+                              "loss_start": fit.loss0, "iterations": fit.iterations, **fit.extras})
         written.insert(0, out)
     except (ValueError, OSError, np.linalg.LinAlgError) as e:
         for path in written:          # no partial set of outputs
