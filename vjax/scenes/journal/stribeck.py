@@ -16,6 +16,7 @@ import numpy as np
 
 from ..._core import checks
 from .bearing import journal_bearing
+from .finite.steady import nests
 
 LIFT_OFF_SHARE = 0.01     # the lift-off speed: where the asperities' share of the load falls to this
 
@@ -77,11 +78,18 @@ def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length, roug
         return journal_bearing(R, radial_clearance, viscosity, load, length=length, roughness=roughness,
                                initial=initial, throw=False, **{speed_name: float(w)}, **kw)
 
+    # on a grid whose cold solves start from a coarser grid's solution, that start is nearer the
+    # root than the last point's (a speed step moves a film's cavity by many cells, one per
+    # Newton step from a warm start): cold starts, the warm one kept for failures
+    options = kw.get("options")
+    cold = options is not None and nests(options)
     results = [None] * speeds.size
     done, total = 0, speeds.size
     last = None
     for i in range(speeds.size - 1, -1, -1):          # down from the full film
-        results[i] = solve(speeds[i], last)
+        results[i] = solve(speeds[i], None if cold else last)
+        if cold and not bool(results[i].converged) and last is not None:
+            results[i] = solve(speeds[i], last)
         done += 1
         if progress is not None:
             progress(done, total)

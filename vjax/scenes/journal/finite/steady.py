@@ -242,15 +242,15 @@ NESTED_MIN_CELLS = 2048    # cold solves on n m >= this many cells start from a 
 
 
 def _coarse_options(options: FiniteJournalOptions) -> FiniteJournalOptions:
-    """The grid a cold solve on a nesting grid (:func:`_nests`) starts from: halved until it no
+    """The grid a cold solve on a nesting grid (:func:`nests`) starts from: halved until it no
     longer nests (256 x 64 -> 64 x 16), so that one coarse program is compiled, not one per
     level (each is a whole Newton; its size hardly depends on the grid)."""
-    while _nests(options):
+    while nests(options):
         options = dataclasses.replace(options, n=options.n // 2, m=options.m // 2)
     return options
 
 
-def _nests(options: FiniteJournalOptions) -> bool:
+def nests(options: FiniteJournalOptions) -> bool:
     """Whether a cold solve on this grid starts on a coarser one (:func:`_coarse_options`; its
     nodes every 2nd, 4th, ... node of this one in theta and z, uniform or cosine spacing): on fine grids the rigid
     estimate is far from the root in Newton's terms (a 96 x 32 grid at eps = 0.8, L/D = 1:
@@ -312,7 +312,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
             raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
         pr, start = dataclasses.replace(pr, x0=start_from(initial, pr, cfg)), "given"
-    elif _nests(options):
+    elif nests(options):
         coarse = finite_journal_bearing(
             R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
