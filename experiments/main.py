@@ -62,13 +62,14 @@ STAGES = [
     ("dynamics", "experiments.figures.journal_dynamics", "main"),
     ("bores", "experiments.figures.journal_bores", "stage"),
     ("stribeck", "experiments.figures.stribeck_figures", "stage"),
+    ("thermal", "experiments.figures.thermal_figures", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (CPU seconds of each stage
 # alone, empty cache, default XLA emitters, calibration total 5.5 s: journal 61, bodies 38 with
 # its own calibration, dynamics 37, roller 36, pin 23, bores 15), so that the last to finish
 # are short ones; calibration first, bodies waits for it. A stage of STAGES not named here
 # starts right after calibration (its cost unknown: early, so that it does not finish last).
-ORDER = ("calibration", "journal", "roller", "bodies", "dynamics", "pin", "bores", "foundation")
+ORDER = ("calibration", "journal", "roller", "bodies", "dynamics", "pin", "bores", "thermal", "foundation")
 PRIORITY = ([s for s in STAGES if s[0] == ORDER[0]] + [s for s in STAGES if s[0] not in ORDER]
             + [s for name in ORDER[1:] for s in STAGES if s[0] == name])
 DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material.json
