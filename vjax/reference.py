@@ -181,9 +181,12 @@ def persson_b_from_load(load, E, R, dR):
     clearance dR (m): inverts :func:`persson_load_parameter`."""
     _scalars_positive(load=load, E=E, R=R, dR=dR)
     target = E / (1.0 - PERSSON_NU**2) * dR / load
-    bc = persson_limit_b()
-    return float(bisect(lambda b: persson_load_parameter(b) - target, jnp.asarray(1e-6),
-                        jnp.asarray(bc * (1 - 1e-12)), 100))
+    return float(_persson_b(jnp.asarray(target, jnp.result_type(float)), jnp.asarray(persson_limit_b() * (1 - 1e-12))))
+
+
+@jax.jit      # compiled once (an eager bisection over a new closure would compile at every call)
+def _persson_b(target, b_max):
+    return bisect(lambda b: persson_load_parameter(b) - target, jnp.full_like(target, 1e-6), b_max, 100)
 
 
 def persson_pressure(theta, b, E, R, dR):
