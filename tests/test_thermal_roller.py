@@ -25,12 +25,6 @@ OPT = vjax.RollerOptions(n=64)
 W_SHAFT = 0.3 / TAU * (RI + RO) / RI          # outer ring fixed: patch speed 0.3 / tau on the outer ring
 T_AMB = 30.0
 HA = 1e-3                                     # W/(m K): ~10 K of self-heating at this speed
-# vjax.thermal_roller counts the power as -(Omega_O torque + Omega_I torque_shaft): negative for
-# either direction of rotation (so the rings never heat, T stays at T_ambient), and the inner
-# ring's torque taken about the outer ring's centre (11 % off here). Each ring's hysteresis is
-# +Omega times its torque about its own centre (tests/test_roller.py's energy balance):
-# torque_shaft - ring_shift * force_shaft[1] for the inner ring. Remove the mark with the fix.
-POWER_SIGN = pytest.mark.xfail(strict=True, reason="thermal_roller's power: sign and the inner ring's torque arm")
 
 
 def run(hA, T_ambient=T_AMB, **kw):
@@ -56,7 +50,6 @@ def modal_dissipation(scene, T):
     return total
 
 
-@POWER_SIGN
 def test_energy_balance_closes_on_the_rings_hysteresis():
     """P = hA (T - T_amb) to 1e-10 from the result's own temperature; P is the rings' modal
     dissipation at T (within the torque arm's geometric factor max|u|/R, as in test_roller);
@@ -89,7 +82,6 @@ def test_infinite_removal_is_the_isothermal_bearing():
         assert np.max(np.abs(np.asarray(a) - np.asarray(b))) <= 1e-10 * np.max(np.abs(np.asarray(b)))
 
 
-@POWER_SIGN
 @pytest.mark.slow
 def test_temperature_derivative_in_hA_against_central_differences():
     """dT/dhA by the implicit derivative of the thermal root (one tangent solve) against central

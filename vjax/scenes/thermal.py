@@ -430,10 +430,18 @@ def thermal_roller(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers,
                    shift, omega_shaft=0.0, omega_housing=0.0, options=None, throw=True, tol=None, max_iter=60,
                    **scene_arguments):
     """:func:`vjax.roller_bearing` with both rings at the bulk temperature T (C) their
-    hysteresis sets: P = -(Omega_O torque + Omega_I torque_shaft) (W/m, Omega the patch speeds
-    relative to each ring) = ``heat.hA`` (T - T_ambient) (W/(m K)). Returns a
+    hysteresis sets: P = Omega_O T_O + Omega_I T_I (W/m, Omega the patch speeds relative to
+    each ring, T each ring's torque about its own centre: the inner ring's centre is shifted
+    by ``ring_shift`` along the load) = ``heat.hA`` (T - T_ambient) (W/(m K)). Returns a
     :class:`ThermalResult` (``scene``: a :class:`~vjax.RollerResult`)."""
     kw = dict(scene_arguments, **({} if options is None else dict(options=options)))
+    load_angle = kw.get("load_angle", 0.0)
+
+    def hysteresis(s):
+        # the inner ring's torque about its own centre, ring_shift along the load from the bearing's
+        cx, cy = s.ring_shift * jnp.cos(load_angle), s.ring_shift * jnp.sin(load_angle)
+        inner = s.torque_shaft - (cx * s.force_shaft[1] - cy * s.force_shaft[0])
+        return s.patch_speed[0] * s.torque, s.patch_speed[1] * inner
 
     def scene(T, p):
         return roller_bearing(p["housing"], p["shaft"], p["RO"], p["RI"], p["D"], n_rollers, p["load"],
@@ -442,6 +450,4 @@ def thermal_roller(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers,
 
     params = dict(housing=housing, shaft=shaft, RO=R_outer, RI=R_inner, D=roller_diameter, load=load,
                   wJ=omega_shaft, wB=omega_housing, shift=shift)
-    return _dry("thermal_roller", scene,
-                lambda s: (-s.patch_speed[0] * s.torque, -s.patch_speed[1] * s.torque_shaft), heat, params, tol,
-                max_iter, throw)
+    return _dry("thermal_roller", scene, hysteresis, heat, params, tol, max_iter, throw)
