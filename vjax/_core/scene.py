@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import dataclasses
 
+import jax
+import jax.numpy as jnp
 import numpy as np
 
 from . import checks, solve as _solve
@@ -53,6 +55,14 @@ def at_temperature(temperature, shift, *bodies):
     checks.finite("temperature", temperature)
     checks.scalar("temperature", temperature)
     return tuple(None if b is None else b.at_temperature(shift, temperature) for b in bodies)
+
+
+def canonical(*values):
+    """Concrete numbers (Python, numpy, JAX) as arrays of the default float dtype, traced values
+    and None as they are: jit's cache tells 0.05 (a weakly typed Python number) from
+    np.float64(0.05) and float32 from float64, and would compile a scene's program once for each."""
+    f = jnp.result_type(float)
+    return tuple(v if v is None or isinstance(v, jax.core.Tracer) else jnp.asarray(v, f) for v in values)
 
 
 def scalars(checker, **values):

@@ -171,6 +171,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
             raise ValueError(f"initial must be a PinResult of the same pin (n = {options.n})")
         start = (initial.pin_offset, initial.pressure)
     omega = pin_patch_speed(omega_shaft, omega_housing, R, radial_clearance)
+    R, radial_clearance, load, load_angle, omega = _scene.canonical(R, radial_clearance, load, load_angle, omega)
     result = solve_with_fallback(
         lambda opts: _pin_in_hole(housing, R, radial_clearance, load, load_angle, omega, start, memory, opts),
         options)

@@ -72,9 +72,9 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     rigid = housing is None and shaft is None
     cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
                  krylov=options.krylov and not rigid and roughness is None)
-    pr = _params(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing, omega_shaft,
-                 supply_pressure, mask, float(circumferential), s, housing, shaft, roughness,
-                 unknowns=unknowns(cfg), memory=memory)
+    pr = _params(*_scene.canonical(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing,
+                                   omega_shaft, supply_pressure), mask, float(circumferential), s, housing, shaft,
+                 roughness, unknowns=unknowns(cfg), memory=memory)
     return pr, cfg
 
 

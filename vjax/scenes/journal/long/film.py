@@ -266,8 +266,8 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     cfg = Config(cavitation, key, float(tol), groove == "fixed")
 
     groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
-    pr = params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure,
-                groove_cell, housing, shaft, n=n, memory=memory)
+    pr = params(*_scene.canonical(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft,
+                                  supply_pressure), groove_cell, housing, shaft, n=n, memory=memory)
     return pr, cfg, housing, shaft
 
 
