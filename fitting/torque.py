@@ -523,6 +523,9 @@ def evaluate(model, material, shift, rpm, T, load, extras=None):
     restarts and continuation, are branches, which vmap turns into selects that run every
     branch for every point)."""
     extras = extras or {}
+    # jax arrays: a numpy array closed over by a jitted caller and vmapped into the thermal
+    # scenes' implicit root fails as a non-canonical constant
+    rpm, T, load = (jnp.asarray(a) for a in (rpm, T, load))
     point = lambda a, b, c: model(material, shift, a, b, c, **extras)     # noqa: E731
     if getattr(model, "sequential", False):
         return jax.lax.map(lambda p: point(*p), (rpm, T, load))
