@@ -135,7 +135,16 @@ def speed_figure(out, quick=False):
                                                 "against level 1 thermal"),)
 
 
-FIGURES = (speed_figure,)      # one function per figure: (out, quick) -> (text, checks, figures)
+def map_figure(out, quick=False):
+    """The film's temperature map (level 2, :mod:`experiments.figures.thermal_map`)."""
+    from experiments.figures.thermal_map import temperature_map
+    text, checks = temperature_map(out)
+    return text, checks, (("thermal_map.png", "the film's temperature over the land (level 2: ISO VG 32 at 40 C, "
+                                              "3000 rpm, 1 MPa, L/D = 1, carry-over 0.8), adiabatic and liner-cooled "
+                                              "bush, with the pressure's contours"),)
+
+
+FIGURES = (speed_figure, map_figure)      # one function per figure: (out, quick) -> (text, checks, figures)
 
 
 def run(out, quick=False):
@@ -165,7 +174,9 @@ def stage(out_dir, quick=False):
     about = ("A finite journal bearing with a polymer liner in a turning hub (R = 50.075 mm, c = 75 um, L/D = 0.5, "
              "1 MPa, ISO VG 32 supplied at 40 C) at its own temperature: level 1 (ISO 7902's effective temperature, "
              "the heat carried by the side leakage and through hA = 5 W/K; the oil's viscosity and the liner's "
-             "moduli at T_eff) against the isothermal bearing at the supply temperature.")
+             "moduli at T_eff) against the isothermal bearing at the supply temperature. Then the film's "
+             "temperature field of a rigid ISO 7902 bearing (level 2: the energy equation over the land, the "
+             "groove mixing 0.8 of the arriving oil with supply oil).")
     return _common.StageReport(text, about, checks, figures)
 
 

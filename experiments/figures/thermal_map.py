@@ -78,7 +78,7 @@ def temperature_map(out):
     adiabatic, cooled = results[0][1], results[1][1]
     checks = (
         _common.Check("film temperature field: |heat out (ends, groove, bush) / power - 1|, worst of two bushes",
-                      balance, 0.0, 1e-10, "energy conservation of the finite-volume energy equation", "max"),
+                      balance, 1e-10, 0, "energy conservation of the finite-volume energy equation", "max"),
         _common.Check("film temperature field: T_max of the liner-cooled film below the adiabatic one's (1 = yes)",
                       float(cooled.max_temperature < adiabatic.max_temperature), 1.0, 0, "heat leaves through the "
                       "bush", "min"),
