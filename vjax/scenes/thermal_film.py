@@ -5,9 +5,9 @@ the film's flow, heated by its shear, cooled through the bush and the journal, t
 mixing the oil carried over with supply oil) and the Reynolds equation with the viscosity
 of the lubricant at each node's temperature, solved together (docs/theory.md §19.2).
 
-Solve: successive substitution, T -> eta(T) -> the film's steady state (Newton, from the last
-one) -> the energy equation (a direct solve) -> T, each update relaxed; it converges in 10-30
-rounds where the viscosity halves every 10-20 K. Each deformable body sits at the land's mean
+Solve: rounds of T -> eta(T) -> the film's steady state (Newton, from the last one) -> the
+energy equation (a direct solve) -> T, mixed by Anderson's method over the last rounds: 15-30
+rounds to 1e-9 K where the viscosity halves every 10-20 K. Each deformable body sits at the land's mean
 film temperature (area-weighted): a body's steady Green's function is that of a homogeneous
 body, so one temperature per body, the film's mean, is what the Fourier-space operator can
 hold (a liner's conductance is also far larger along it than across the film's variation).
@@ -204,7 +204,7 @@ def _energy(x, T_rise, params, st: _Static, pr, cfg):
     hB, hJ = heat.bush * area, heat.journal * area
     wall = (hB + hJ) / rho_cp
     rhs = (source + hB * (T_B - heat.T_supply) + hJ * (T_J - heat.T_supply)) / rho_cp
-    blocks, mixing = energy.operator(Fx, Fz, pr.groove, heat.carry_over, wall, st.v_positive)
+    blocks, _ = energy.operator(Fx, Fz, pr.groove, heat.carry_over, wall, st.v_positive)
     rhs = jnp.where(pr.groove > 0, 0.0, rhs)
     parts = dict(Fx=Fx, Fz=Fz, Phi=Phi, P_bodies=P_bodies, hB=hB, hJ=hJ, T_B=T_B, T_J=T_J, rho_cp=rho_cp,
                  source=source, area=area)
@@ -390,7 +390,7 @@ def _outputs(u, params, st: _Static, shape, stats, lubricant):
     n_T = shape[0] * shape[1]
     x, T_rise = u[:-n_T], u[-n_T:].reshape(shape)
     pr, cfg = _film_params(T_rise, params, st)
-    blocks, rhs, parts = _energy(x, T_rise, params, st, pr, cfg)
+    _, _, parts = _energy(x, T_rise, params, st, pr, cfg)
     scene = outputs(x, pr, cfg, stats)
     T = heat.T_supply + T_rise
     rho_cp = parts["rho_cp"]
