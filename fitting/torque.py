@@ -26,8 +26,8 @@ optionally scene parameters (``extras``): mixed lubrication's boundary friction 
 mu_b and composite rms roughness sigma (a :func:`journal_model` with ``roughness=``, torque
 along a Stribeck curve through lift-off), or the rig's heat transfer hA (a model with
 ``heat_transfer=``: the scene at the effective temperature its own dissipation sets, the
-data's T the supply/ambient temperature). The fit works on the logarithms: positivity is automatic and a step means the same relative
-change for a 1e9 Pa modulus and a C1 of 20.
+data's T the supply/ambient temperature). The fit works on the logarithms: positivity is
+automatic and a step means the same relative change for a 1e9 Pa modulus and a C1 of 20.
 
 Objective (dimensionless, a chi^2 per torque point)::
 
@@ -216,8 +216,8 @@ def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, 
 
     ``heat_transfer``: None (isothermal: the rings at the data's T) or hA (W/(m K), per unit
     axial length, > 0; inf is the isothermal limit): the rings at the bulk temperature their own
-    hysteresis sets (:func:`vjax.thermal_roller`), cooled by hA to the data's T, then the
-    ambient temperature. The model's keyword ``hA`` overrides it (fitting log hA)."""
+    hysteresis sets (:func:`vjax.thermal_roller`), cooled by hA to the data's T (then the
+    ambient temperature). The model's keyword ``hA`` overrides it (fitting log hA)."""
     options = vjax.RollerOptions(n=n)
     _check_heat(heat_transfer)
 

@@ -34,6 +34,17 @@ def test_infinite_heat_transfer_is_the_isothermal_model():
 
 
 @pytest.mark.slow
+def test_roller_infinite_heat_transfer_is_the_isothermal_model():
+    """The same for the roller model (both rings heated by their hysteresis)."""
+    pts = (jnp.array([100.0, 1000.0]), jnp.array([30.0, 50.0]), jnp.array([240.0, 240.0]))
+    iso = np.asarray(ft.evaluate(ft.roller_model(n=64), TRUE, SHIFT, *pts)[0])
+    inf = np.asarray(ft.evaluate(ft.roller_model(n=64, heat_transfer=float("inf")), TRUE, SHIFT, *pts)[0])
+    hot = np.asarray(ft.evaluate(ft.roller_model(n=64, heat_transfer=0.5), TRUE, SHIFT, *pts)[0])
+    np.testing.assert_allclose(inf, iso, rtol=1e-12)
+    assert np.max(np.abs(hot / iso - 1)) > 0.02
+
+
+@pytest.mark.slow
 def test_journal_infinite_heat_transfer_is_the_isothermal_model():
     """The same for the journal model (ISO 7902's balance with hA = inf: the film and the liner
     at the supply temperature), one point of a water-lubricated bearing with a turning liner."""

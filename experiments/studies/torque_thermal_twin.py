@@ -19,8 +19,15 @@
    dynamic modulus |E*| over the band the rig probes (rms of log(|E*_fit| / |E*_true|) over
    1-1e4 rad/s at 40-100 C), chi^2 and the torque misfit against the truth.
 
-Outputs in ``OUT`` (``torque_thermal_twin_*``: data CSV, params CSV, summary markdown, torque
-and moduli figures). Run: ``python -m experiments.studies.torque_thermal_twin OUT [--quick]``.
+``--scene journal``: the same with torque_twin's oil-lubricated journal bearing (R = 25 mm,
+c = 50 um, L = 50 mm, a 3 mm liner of the polymer at Poisson's ratio 0.4 turning on a fixed
+shaft, ISO VG 32 oil with c_p = 2000 J/(kg K), 16 x 4 film cells) at 700, 1500, 3000 rpm x 1,
+2.5, 5 kN with the supply at 40 C and x 0.4, 1, 2 kN at 70 C, heat carried by the side leakage and by hA = 2 W/K
+(:func:`vjax.thermal_journal_bearing`, ISO 7902's balance).
+
+Outputs in ``OUT`` (``torque_thermal_twin_<scene>_*``: data CSV, params CSV, summary markdown,
+torque and moduli figures). Run:
+``python -m experiments.studies.torque_thermal_twin OUT [--quick] [--scene pin|journal]``.
 """
 from __future__ import annotations
 
@@ -36,6 +43,7 @@ SPEEDS = (100.0, 400.0, 1600.0)   # rpm
 LOADS = (0.5e-2, 1e-2, 2e-2)      # F / (E0 R)
 AMBIENT = (40.0, 70.0)            # C
 R, C = 0.01, 1e-4                 # hole radius, radial clearance (m)
+JOURNAL_L, JOURNAL_HA = 0.05, 2.0    # journal scene: length (m), housing heat transfer (W/K)
 
 
 def modulus_error(mat, true_mat, shift, true_shift):
@@ -51,41 +59,68 @@ def modulus_error(mat, true_mat, shift, true_shift):
     return float(np.sqrt(np.mean(np.concatenate(errs) ** 2)))
 
 
-def main(out_dir, quick=False):
+def _pin(true_mat, true_shift, quick):
+    """(isothermal model, thermal model, grid, hA, T_eff of the truth at each point, hA unit)."""
+    import jax.numpy as jnp
+    import vjax
+    from fitting import torque as ft
+    n = 64 if quick else 128
+    E0 = float(true_mat.E0)
+    grid = [(s, T, f * E0 * R) for T in AMBIENT for f in LOADS for s in SPEEDS]
+    rpm = np.array([g[0] for g in grid])
+    iso = ft.pin_model(n=n)
+    # the rig's hA: the largest isothermal power over HEAT_RISE
+    tq_iso, _ = ft.evaluate(iso, true_mat, true_shift, *(jnp.asarray(v) for v in zip(*grid)))
+    P_iso = np.asarray(tq_iso) * rpm * np.pi / 30 * (R - C) / C     # Omega torque, Omega the patch speed
+    hA = float(f"{P_iso.max() / HEAT_RISE:.2g}")
+    T_eff = [float(vjax.thermal_pin(true_mat, R, C, c, vjax.HeatTransfer(T_supply=b, hA=hA, oil_flow=False),
+                                    shift=true_shift, omega_shaft=a * np.pi / 30,
+                                    options=vjax.PinOptions(n=n)).temperature) for a, b, c in grid]
+    return iso, ft.pin_model(n=n, heat_transfer=hA), grid, hA, np.asarray(T_eff), "W/(m K)"
+
+
+def _journal(true_mat, true_shift, quick):
+    """The oil-lubricated journal bearing of torque_twin's journal scene (its liner at Poisson's
+    ratio 0.4, turning; ISO VG 32 with c_p = 2000 J/(kg K)) on 16 x 4 cells, 700-3000 rpm x 1,
+    2.5, 5 kN at supply 40 and 70 C, hA = JOURNAL_HA W/K to the supply temperature."""
+    import vjax
+    from fitting import torque as ft
+    oil = ft.oil_viscosity(32.0, 5.4)
+    kw = dict(length=JOURNAL_L, thickness=3e-3, viscosity=oil, n=16, m=4)
+    # the thinner hot oil carries 0.4 times the load (as torque_twin's journal scene)
+    grid = [(s, T, F * (1.0 if T < 50 else 0.4) / JOURNAL_L) for T in AMBIENT for F in (1000.0, 2500.0, 5000.0)
+            for s in (700.0, 1500.0, 3000.0)]
+    opt = vjax.FiniteJournalOptions(n=16, m=4)
+    T_eff = [float(vjax.thermal_journal_bearing(
+        0.025, 5e-5, oil.lubricant, c * JOURNAL_L, vjax.HeatTransfer(T_supply=b, hA=JOURNAL_HA), length=JOURNAL_L,
+        housing=vjax.liner(true_mat, 3e-3), shift=true_shift, omega_housing=a * np.pi / 30, options=opt).temperature)
+        for a, b, c in grid]
+    return (ft.journal_model(**kw), ft.journal_model(heat_transfer=JOURNAL_HA, **kw), grid, JOURNAL_HA,
+            np.asarray(T_eff), "W/K")
+
+
+def main(out_dir, quick=False, scene="pin"):
     _common.enable_x64()
     out = _common.setup(out_dir)
     import jax
     import jax.numpy as jnp
-    import vjax
     from fitting import plots
     from fitting import torque as ft
+    from vjax import Material
     from experiments.studies.torque_mixed_twin import identifiability_lines, markdown_table
-    from experiments.studies.torque_twin import twin_material
+    from experiments.studies.torque_twin import JOURNAL_NU, twin_material
 
     t_all = time.perf_counter()
-    stem = "torque_thermal_twin"
+    stem = f"torque_thermal_twin_{scene}"
     true_mat, true_shift, dma_table = twin_material(quick)
-    n = 64 if quick else 128
-    E0 = float(true_mat.E0)
-    grid = [(s, T, f * E0 * R) for T in AMBIENT for f in LOADS for s in SPEEDS]
+    if scene == "journal":
+        true_mat = Material.prony(true_mat.E0, true_mat.moduli, true_mat.times, JOURNAL_NU)
+    iso, thermal, grid, hA, T_eff, unit = (_journal if scene == "journal" else _pin)(true_mat, true_shift, quick)
     rpm, T, load = (np.array(v) for v in zip(*grid))
     pts = tuple(jnp.asarray(a) for a in (rpm, T, load))
-
-    # the rig's hA: the hottest point about HEAT_RISE above ambient by its isothermal power
-    iso = ft.pin_model(n=n)
-    tq_iso, _ = ft.evaluate(iso, true_mat, true_shift, *pts)
-    P_iso = np.asarray(tq_iso) * rpm * np.pi / 30 * (R - C) / C     # Omega torque, Omega the patch speed
-    hA = float(f"{P_iso.max() / HEAT_RISE:.2g}")
-    thermal = ft.pin_model(n=n, heat_transfer=hA)
     t0 = time.perf_counter()
     tq_true, ok = (np.asarray(v) for v in jax.jit(lambda m, s: ft.evaluate(thermal, m, s, *pts))(true_mat, true_shift))
-    T_eff = []
-    for a, b, c in grid:
-        r = vjax.thermal_pin(true_mat, R, C, c, vjax.HeatTransfer(T_supply=b, hA=hA, oil_flow=False),
-                             shift=true_shift, omega_shaft=a * np.pi / 30, options=vjax.PinOptions(n=n))
-        T_eff.append(float(r.temperature))
-    T_eff = np.asarray(T_eff)
-    print(f"hA = {hA:g} W/(m K); true torques {time.perf_counter() - t0:.1f} s, converged {bool(ok.all())}; "
+    print(f"hA = {hA:g} {unit}; true torques {time.perf_counter() - t0:.1f} s, converged {bool(ok.all())}; "
           f"T_eff - T_amb: {np.round(T_eff - T, 2)}", flush=True)
 
     rng = np.random.default_rng(5)
@@ -145,8 +180,8 @@ def main(out_dir, quick=False):
     start_mod = modulus_error(start_mat, true_mat, start_shift, true_shift)
     lines = ["# Thermal twin: the material from self-heated torques", "",
              f"scene: {thermal.scene}", "",
-             f"{len(data)} points: {SPEEDS} rpm x F/(E0 R) = {LOADS} at ambient {AMBIENT} C; 3 % noise; truth chi2 "
-             f"{chi(tq_true):.3f}; hA = {hA:g} W/(m K)", "",
+             f"{len(data)} points: " + ", ".join(f"({a:g} rpm, {b:g} C, {c:.3g} N/m)" for a, b, c in grid)
+             + f"; 3 % noise; truth chi2 {chi(tq_true):.3f}; hA = {hA:g} {unit}", "",
              "self-heating of the truth, T_eff - T_amb (K): " + ", ".join(f"{d:.1f}" for d in T_eff - T)
              + f" ({int(hot.sum())} points heated by > 1 K: 'hot')", "",
              f"start: rms ln|E*| error {start_mod:.3f}, chi2 {chi(results['isothermal'].torque0):.3g}", ""]
@@ -169,5 +204,6 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out", help="output directory")
     ap.add_argument("--quick", action="store_true", help="n = 64, few iterations")
+    ap.add_argument("--scene", choices=("pin", "journal"), default="pin")
     a = ap.parse_args()
-    main(a.out, quick=a.quick)
+    main(a.out, quick=a.quick, scene=a.scene)
