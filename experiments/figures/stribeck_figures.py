@@ -6,7 +6,10 @@ Run::
 
 The bearing (issue 43's): journal radius 25 mm in a bore of R = 25.05 mm, c = 50 um, L/D = 1,
 eta = 0.03 Pa s, W = 2 kN, no groove (the film periodic, ambient at both ends), Reynolds
-cavitation, 32 x 16 cells. A smooth steel journal in a rough bush: sigma = 1 um, eta_s beta
+cavitation, 32 x 16 cells: a coarse grid for the main job's time, which shows the curves' shape,
+not their values (against 256 x 64 its friction coefficient is off by up to 154 % in the mixed
+regime and its asperity share by 0.19; 128 x 32 is within 4.8 % and 0.02 and the lift-off speed
+within 0.6 %: ``python -m experiments.studies.stribeck_grid``). A smooth steel journal in a rough bush: sigma = 1 um, eta_s beta
 sigma = 0.05, sigma/beta = 0.005, E' from steel (210 GPa, 0.3) and polymer (3 GPa, 0.4),
 mu_b = 0.1. Three curves over the journal's speed: a rigid bush and a 2 mm polymer liner
 (SLS 1.5 -> 3 GPa, 10 ms), both with Patir-Cheng average flow and Greenwood-Tripp asperities
@@ -117,7 +120,8 @@ def stage(out_dir, quick=False):
     about = ("A finite journal bearing (L/D = 1, c = 50 um, W = 2 kN, eta = 0.03 Pa s) from boundary friction through "
              "mixed lubrication to a full film: Patir-Cheng average flow with Greenwood-Tripp asperities (sigma = 1 um, "
              "mu_b = 0.1), a rigid bush and a 2 mm polymer liner loaded by the film and the asperities together, "
-             "against today's smooth film, which stops where it would close.")
+             "against today's smooth film, which stops where it would close. On 32 x 16 cells, which show the curves' "
+             "shape, not their values (128 x 32 or finer for numbers: experiments/studies/stribeck_grid.py).")
     text = (Path(out_dir) / "stribeck" / "stribeck.txt").read_text()
     return _common.StageReport(text, about, checks, (("stribeck.png", "friction coefficient and asperity share "
                                                       "against the Hersey number; lift-off where 1 % of the load "
