@@ -15,8 +15,9 @@ Two curves over the hub's speed: isothermal (everything at the 40 C supply, ``hA
 level 1 thermal (:func:`vjax.thermal_journal_bearing`: ISO 7902's effective temperature, the
 heat leaving with the side leakage and through hA = 5 W/K to 40 C; the oil's viscosity and the
 liner's moduli at T_eff). Outputs in ``<out>/thermal/``: ``thermal_speed.csv``,
-``thermal_speed.png``, ``thermal.txt``. :func:`stage` is the main job's "thermal" stage: one
-function per figure (:func:`speed_figure`), each returning its text, checks and figures.
+``thermal_speed.png``, ``thermal.txt`` (``--quick`` leaves the speed figure as it is: small already).
+:func:`stage` is the main job's "thermal" stage: one function per figure (:data:`FIGURES`:
+:func:`speed_figure`), each returning its text, checks and figures.
 """
 from __future__ import annotations
 
