@@ -81,8 +81,9 @@ def _parser():
     g.add_argument("--heat-transfer", type=float, default=None, metavar="HA",
                    help="the rig's heat transfer coefficient times area to the CSV's temperature, which becomes the "
                         "ambient (and oil supply) temperature: the scene runs at the effective temperature its own "
-                        "dissipation sets (W/K for --scene journal, whose oil's side leakage also carries heat; "
-                        "W/(m K) per unit length for pin and roller); inf: isothermal")
+                        "dissipation sets (W/K for --scene journal, where the side leakage of --oil or the default "
+                        "water also carries heat, not of a fixed --viscosity; W/(m K) per unit length for pin and "
+                        "roller); inf: isothermal")
     g.add_argument("--fit-heat-transfer", action="store_true",
                    help="also fit log hA, starting from --heat-transfer")
     p.add_argument("--n", type=int, default=None,
