@@ -18,7 +18,9 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
    decades of speed and load: where the solver converges, in how many steps, and its message
    where the bore's deformation leaves small-strain theory;
 9. ``stribeck``: a finite journal bearing with rough surfaces from boundary friction through
-   mixed lubrication to a full film, rigid and lined, against today's smooth film.
+   mixed lubrication to a full film, rigid and lined, against today's smooth film;
+10. ``thermal``: a lined journal bearing at its own temperature against the isothermal one
+    (effective temperature and friction against speed), and a film's temperature map.
 
 ``<out>/summary.md`` opens with what was computed and a table of every stage's checks
 (value, reference, tolerance, PASS/FAIL), defines the symbols, then gives each stage's
