@@ -320,6 +320,14 @@ def implicit_root(solver, residual, linear_solver=None):
     def solve(params):
         return solver(params)
 
+    def rebound(params):
+        # vmap over a numpy array closed over by a jitted function hands BatchTracers holding
+        # that numpy array, which custom_jvp refuses ("non-canonical constant"): one add each
+        # makes their values JAX arrays
+        return jax.tree_util.tree_map(
+            lambda a: a + jnp.zeros((), a.dtype) if isinstance(a, jax.core.Tracer) and jnp.issubdtype(a.dtype, jnp.inexact)
+            else a, params)
+
     @solve.defjvp
     def _jvp(primals, tangents):
         (params,), (dparams,) = primals, tangents
@@ -336,7 +344,7 @@ def implicit_root(solver, residual, linear_solver=None):
         dx = jax.lax.custom_linear_solve(matvec, -dr, lambda _, b: forward(b), lambda _, b: transpose(b))
         return (x, aux), (dx, jax.tree_util.tree_map(_zero_tangent, aux))
 
-    return solve
+    return lambda params: solve(rebound(params))
 
 
 def bisect(fn, lo, hi, iterations: int, sign_lo=None):
