@@ -68,6 +68,7 @@ def test_thin_incompressible_layer_scales_with_the_cube_of_its_thickness(kind):
     assert np.all(c1 < 1e-4 * float(green.mode_compliance(kind, 1, 0.45, thickness_ratio=1e-3)))
 
 
+@pytest.mark.slow      # each body's operator stays fast in its own tests
 def test_element_symbol_is_the_aliased_modal_sum():
     """The piecewise-constant operator = the continuous one integrated over the elements:
     sum over m = k (mod n) of c_m sinc(m/n), here summed directly over 2^20 modes."""

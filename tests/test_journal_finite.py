@@ -468,6 +468,7 @@ def test_jfo_conserves_mass_and_meets_the_long_bearing(jfo_long):
     assert abs(2 * phi[100.0] - phi[50.0] - float(long.steady.attitude_angle)) < 2e-3
 
 
+@pytest.mark.slow      # the Reynolds coefficients stay fast
 def test_jfo_coefficients_meet_the_long_bearing_and_the_static_stiffness(jfo_long):
     """The cavity's liquid fraction has its own dynamics (h df/dt in each cavity cell's balance),
     so K and C depend on the whirl frequency even for a rigid film. As L/D grows, K/L and C/L

@@ -24,6 +24,7 @@ def solve(omega, roughness=ROUGH, **kw):
     return vjax.journal_bearing(R, C, ETA, W, omega_shaft=omega, roughness=roughness, **{**BEARING, **kw})
 
 
+@pytest.mark.slow      # rough and smooth films stay fast in the peer comparison and the boundary limit
 def test_smooth_limit_is_the_full_film():
     """sigma -> 0: the flow factors -> 1, the expected gap -> h, no asperity pressure: today's
     smooth bearing to 1e-8 (the power by its own definition: the drive's, to 1e-6)."""

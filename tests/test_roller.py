@@ -220,6 +220,7 @@ def test_bad_geometry_raises_naming_the_argument():
         roller_bearing(SLS, SLS, RO, RI, D, Z, LOAD, options=opts, temperature=30.0)
 
 
+@pytest.mark.slow      # warm starts stay fast in tests/test_contract.py
 def test_speed_sweep_with_kept_jacobians_equals_cold_solves():
     """Continuation along speed (initial=: deflections, pressures and the Jacobian, which Newton
     keeps and Broyden-updates) lands on the cold solutions."""

@@ -81,6 +81,7 @@ def test_heat_balance_closes_with_every_path():
     assert float(r.heat_bush) > 0 and abs(float(r.heat_journal)) > 0
 
 
+@pytest.mark.slow      # its own compile (a constant law); infinite cooling stays fast
 def test_isoviscous_oil_leaves_the_film_as_the_isothermal_bearing():
     oil = vjax.Lubricant.constant(0.02, rho=874.0, c_p=1949.0)
     r = bearing(vjax.FilmHeat(T_supply=40.0), oil=oil)
@@ -131,6 +132,7 @@ def test_runaway_and_bad_input_are_refused_by_name():
         bearing(vjax.FilmHeat(), oil=vjax.Lubricant.constant(0.02))
 
 
+@pytest.mark.slow      # a liner compiles the dense film; the balance test keeps the scene fast
 def test_polymer_liner_sits_at_the_films_mean_temperature():
     """A turning liner (the film's pressure travels round it) whose material relaxes faster when
     hot (WLF) sits at the land's mean film temperature: the balance, its hysteresis included,

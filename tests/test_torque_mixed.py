@@ -29,6 +29,7 @@ def _data(torque=None):
     return ft.TorqueData(RPM, np.full(n, 40.0), np.full(n, 2000.0 / L), t, np.ones(n))
 
 
+@pytest.mark.slow      # the fit compiles its Jacobian; the extras checks stay fast
 def test_mixed_torque_derivatives_vs_central_differences():
     """d torque / d log mu_b and d log sigma (unit scatter: the residual Jacobian is the torque's
     derivative) against central differences of the converged torque, from one compiled

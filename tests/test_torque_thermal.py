@@ -57,6 +57,7 @@ def test_journal_infinite_heat_transfer_is_the_isothermal_model():
     np.testing.assert_allclose(float(b[0]), float(a[0]), rtol=1e-10)
 
 
+@pytest.mark.slow      # hA = inf against the isothermal model stays fast
 def test_heat_transfer_derivative_and_noise_free_fit_recover_the_truth():
     """d torque / d log hA from the implicit derivatives of the thermal balance against central
     differences; then a fit with log hA free, started 20-50 % off in every parameter, lands on
@@ -117,6 +118,7 @@ def test_cli_heat_transfer_is_validated(files, tmp_path, capsys):
     assert not out.exists()
 
 
+@pytest.mark.slow      # the CLI option checks stay fast
 def test_cli_fits_heat_transfer(files, tmp_path, capsys):
     """--heat-transfer with --fit-heat-transfer: runs, writes hA into the JSON's fit record and
     the params CSV, and brings the torque to the noise."""
