@@ -385,3 +385,26 @@ def test_long_bearing_per_unit_length_against_petroff():
     assert float(iso.temperature) == 40.0 and float(iso.scene.eccentricity) == float(ref.eccentricity)
     with pytest.raises(ValueError, match="side leakage"):
         vjax.thermal_journal_bearing(RB, C, OIL, 50.0, thermal.HeatTransfer(T_supply=40.0), omega_shaft=w)
+
+
+@slow
+def test_mixed_lubrication_heats_by_its_boundary_friction():
+    """A slow, heavily loaded bearing in mixed lubrication at its own temperature: the power is
+    the scene's own dissipation (viscous shear and the asperities' friction mu_b p_a U), the
+    balance closes to 1e-10, and hA = inf is the isothermal mixed scene."""
+    rough = vjax.Roughness.from_surfaces(0.0, 1e-6, 210e9, 0.3, 3e9, 0.4)
+    kw = dict(length=0.0501, omega_shaft=0.02, supply_angle=None, roughness=rough,
+              options=vjax.FiniteJournalOptions(n=32, m=8))
+    oil = vjax.Lubricant.constant(0.03, rho=874.0, c_p=1949.0)
+    r = vjax.thermal_journal_bearing(0.02505, 5e-5, oil, 2000.0, thermal.HeatTransfer(40.0, hA=0.05, oil_flow=False),
+                                     **kw)
+    s = r.scene
+    assert float(s.asperity_share) > 0.3
+    boundary = abs(float(s.friction_boundary)) * 0.02 * (0.02505 - 5e-5)
+    assert float(r.power) > boundary > 0.5 * float(r.power)          # mostly the asperities' friction
+    assert abs(float(r.power) / float(s.power_loss) - 1) < 1e-12
+    assert abs(float(r.power) / (0.05 * (float(r.temperature) - 40.0)) - 1) < 1e-10
+    iso = vjax.thermal_journal_bearing(0.02505, 5e-5, oil, 2000.0,
+                                       thermal.HeatTransfer(40.0, hA=jnp.inf, oil_flow=False), **kw)
+    ref = vjax.journal_bearing(0.02505, 5e-5, 0.03, 2000.0, **kw)
+    assert float(iso.scene.eccentricity) == float(ref.eccentricity)

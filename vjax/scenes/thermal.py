@@ -312,8 +312,8 @@ def film_power(scene, R, radial_clearance, eta, omega_shaft, omega_housing, supp
 
 def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTransfer, *, length=None, housing=None,
                             shaft=None, shift=None, omega_shaft=0.0, omega_housing=0.0, supply_angle=math.pi,
-                            supply_width=1.0, cavitation="reynolds", options=None, throw=True, tol=None,
-                            max_iter=60, **scene_arguments) -> ThermalResult:
+                            supply_width=1.0, cavitation="reynolds", roughness=None, options=None, throw=True,
+                            tol=None, max_iter=60, **scene_arguments) -> ThermalResult:
     """A finite journal bearing (:func:`vjax.journal_bearing` with ``length=``) at its effective
     temperature T_eff (C), ISO 7902's global balance (docs/theory.md, "Thermal balance (level 1)"):
     the film isoviscous at eta(T_eff) of the :class:`~vjax.Lubricant` ``lubricant``, the bodies
@@ -321,6 +321,10 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     None: temperature-independent), the heat -- film shear (:func:`film_power`) and the bodies'
     hysteresis -- carried off by the side leakage, T_out = T_in + P_oil / (rho c_p Q), T_eff =
     (T_in + T_out) / 2 (no carry-over), and by ``heat.hA`` to ``heat.T_ambient``.
+
+    With ``roughness`` (mixed lubrication) the power is the scene's own ``power_loss``: Patir and
+    Cheng's viscous shear over the whole land and the asperities' friction mu_b p_a times the
+    sliding speed.
 
     Without ``length`` the infinitely long bearing, per unit length: no side leakage, so the heat
     leaves through ``heat.hA`` (W/(m K)) alone (``HeatTransfer(oil_flow=False)``), and its power
@@ -333,10 +337,10 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     a :class:`ThermalResult`, its ``scene`` a :class:`~vjax.FiniteJournalResult`."""
     lubricant = as_lubricant(lubricant, "lubricant")
     checks.instance("heat", heat, HeatTransfer, "a vjax.HeatTransfer")
-    for name in ("temperature", "viscosity", "initial", "roughness"):
+    for name in ("temperature", "viscosity", "initial"):
         if name in scene_arguments:
             raise ValueError(f"{name}: not an argument of thermal_journal_bearing (the temperature is solved for; "
-                             f"the viscosity is the lubricant's at it; mixed lubrication is not in the balance yet)")
+                             f"the viscosity is the lubricant's at it)")
     if length is None and heat.oil_flow:
         raise ValueError("heat: an infinitely long bearing (no length=) has no side leakage to carry heat: "
                          "HeatTransfer(oil_flow=False, hA=...) with hA per unit length (W/(m K)), or give length=")
@@ -347,13 +351,15 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         raise ValueError("omega_shaft, omega_housing: the thermal balance is built for a positive entrainment speed "
                          "(omega_housing R + omega_shaft R_J > 0); turn the bearing the other way round")
     deformable = housing is not None or shaft is not None
+    if roughness is not None and length is None:
+        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=)")
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
-                  heat=heat, housing=housing, shaft=shaft, shift=shift)
+                  heat=heat, housing=housing, shaft=shaft, shift=shift, rough=roughness)
 
     def balance(T, p):
         eta = p["oil"].viscosity(T)
         at = dict(temperature=T, shift=p["shift"]) if deformable and p["shift"] is not None else {}
-        finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width)
+        finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width, roughness=p["rough"])
         s = journal_bearing(p["R"], p["c"], eta, p["load"], housing=p["housing"], shaft=p["shaft"],
                             omega_shaft=p["wJ"], omega_housing=p["wB"], supply_angle=supply_angle,
                             cavitation=cavitation, options=options, throw=False, **finite, **at, **scene_arguments)
@@ -361,6 +367,11 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         if p["L"] is None:
             P = -(p["wB"] * s.torque + p["wJ"] * s.torque_shaft)
             P_film = P - P_B - P_J
+        elif p["rough"] is not None:
+            # mixed lubrication: the scene's own dissipation, Patir and Cheng's shear over the land and
+            # the asperities' friction mu_b p_a times the sliding speed
+            P_film = s.power_loss
+            P = P_film + P_B + P_J
         else:
             P_film, _ = film_power(s, p["R"], p["c"], eta, p["wJ"], p["wB"], supply_angle, supply_width, cavitation)
             P = P_film + P_B + P_J
