@@ -351,8 +351,8 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     (:func:`vjax.thermal_journal_bearing`, ISO 7902's balance): the data's T is then the supply
     (and ambient) temperature, the heat leaves with the side leakage (when the lubricant has a
     density and specific heat: :func:`oil_viscosity`, :meth:`vjax.Lubricant.water`) and through
-    hA. The model's keyword ``hA`` overrides it (fitting log hA). Not with ``roughness`` (the
-    thermal balance has no asperity friction yet).
+    hA. The model's keyword ``hA`` overrides it (fitting log hA). With ``roughness`` too, the
+    asperities' boundary friction heats the bearing as well.
 
     Signature ``model(material, shift, rpm, T, load, **extras)``, ``model.extras`` the names
     of the keywords it takes ("mu_b", "sigma" with a roughness; "hA" with a heat transfer)."""
@@ -368,8 +368,6 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     if roughness is not None and not isinstance(roughness, vjax.Roughness):
         raise ValueError(f"roughness must be a vjax.Roughness or None, got {type(roughness).__name__}")
     _check_heat(heat_transfer)
-    if roughness is not None and heat_transfer is not None:
-        raise ValueError("roughness and heat_transfer: the thermal balance has no asperity friction yet; give one")
     lubricant = _lubricant(viscosity) if heat_transfer is not None else None
     eta = viscosity if callable(viscosity) else (lambda T, v=float(viscosity): v)
     options = vjax.FiniteJournalOptions(n=n, m=m)
@@ -380,22 +378,22 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
         kw = dict(length=length, housing=vjax.liner(material, thickness), memory=memory, shift=shift,
                   options=options, throw=False, supply_angle=supply_angle, **speeds)
         hA = heat_transfer if hA is None else hA
+        rough = roughness
+        if rough is not None and (mu_b is not None or sigma is not None):
+            rough = dataclasses.replace(rough, **({} if mu_b is None else dict(mu_b=mu_b)),
+                                        **({} if sigma is None else dict(sigma=sigma)))
         if hA is not None:
             heat = vjax.HeatTransfer(T_supply=T, hA=hA, oil_flow=lubricant.c_p is not None)
-            t = vjax.thermal_journal_bearing(R, radial_clearance, lubricant, load * length, heat, **kw)
+            t = vjax.thermal_journal_bearing(R, radial_clearance, lubricant, load * length, heat, roughness=rough, **kw)
             r, ok = t.scene, t.converged & t.scene.converged
         else:
-            rough = roughness
-            if rough is not None and (mu_b is not None or sigma is not None):
-                rough = dataclasses.replace(rough, **({} if mu_b is None else dict(mu_b=mu_b)),
-                                            **({} if sigma is None else dict(sigma=sigma)))
             r = vjax.journal_bearing(R, radial_clearance, eta(T), load * length, temperature=T, roughness=rough, **kw)
             ok = r.converged
         # the stationary side: the shaft when the liner turns, the housing when the shaft does
         tq = r.torque_shaft if turning == "liner" else r.torque
         return tq / length, ok
     model.sequential = True       # the soft liner's solve falls back on continuation: no vmap over points
-    model.extras = ("mu_b", "sigma") if roughness is not None else ("hA",) if heat_transfer is not None else ()
+    model.extras = (("mu_b", "sigma") if roughness is not None else ()) + (("hA",) if heat_transfer is not None else ())
     visc = getattr(viscosity, "__name__", None) if callable(viscosity) else viscosity
     if isinstance(viscosity, vjax.Lubricant):
         visc = viscosity.name or viscosity.law

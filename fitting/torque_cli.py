@@ -162,8 +162,6 @@ def _check_args(args):
             return "--fit-friction needs --roughness SIGMA, the start value (m)"
         if args.asperity_modulus is None:
             return "--roughness needs --asperity-modulus E_PRIME (Pa), the asperities' composite modulus"
-        if args.heat_transfer is not None:
-            return "--roughness and --heat-transfer: the thermal balance has no asperity friction yet; give one"
         for name in ("roughness", "asperity_modulus"):
             v = getattr(args, name)
             if not (v > 0 and v < float("inf")):

@@ -90,5 +90,7 @@ def test_extras_are_checked():
         ft.residual_jacobian(P, ft.journal_model(), _data())
     with pytest.raises(ValueError, match="roughness"):
         ft.journal_model(roughness=1e-6)
+    both = ft.journal_model(roughness=vjax.Roughness(1e-6, 3e9), heat_transfer=10.0)   # rough and self-heating
+    assert both.extras == ("mu_b", "sigma", "hA")
     with pytest.raises(ValueError, match="heat_transfer"):
-        ft.journal_model(roughness=vjax.Roughness(1e-6, 3e9), heat_transfer=10.0)
+        ft.journal_model(heat_transfer=-1.0)
