@@ -128,6 +128,8 @@ def test_runaway_and_bad_input_are_refused_by_name():
         vjax.FilmHeat(bush=-1.0)
     with pytest.raises(ValueError, match="cavitation"):
         bearing(vjax.FilmHeat(), cavitation="half_sommerfeld")
+    with pytest.raises(ValueError, match="supply_angle"):
+        bearing(vjax.FilmHeat(), supply_angle=None)
     with pytest.raises(ValueError, match="rho"):
         bearing(vjax.FilmHeat(), oil=vjax.Lubricant.constant(0.02))
 

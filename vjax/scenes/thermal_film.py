@@ -358,6 +358,9 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
     if v is None or v == 0:
         raise ValueError("omega_shaft, omega_housing: the film's temperature needs concrete speeds with a nonzero "
                          "entrainment speed (omega_housing R + omega_shaft R_J != 0): a film at rest has no flow")
+    if supply_angle is None:
+        raise ValueError("supply_angle: the film's temperature needs an axial groove (its inlet of supply oil); "
+                         "give its angle from the load (rad)")
     if not 0 < relax <= 1:
         raise ValueError(f"relax must be in (0, 1], got {relax!r}")
     eps = float(jnp.finfo(jnp.result_type(float)).eps)
