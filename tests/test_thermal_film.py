@@ -104,7 +104,8 @@ def test_infinite_cooling_is_the_isothermal_bearing():
 @pytest.mark.slow
 def test_derivatives_against_central_differences():
     def f(a):
-        r = bearing(vjax.FilmHeat(T_supply=a[0], bush=a[1]), load=a[2])
+        # converged to 1e-12 K: central differences of a solve converged to tol carry tol / step
+        r = bearing(vjax.FilmHeat(T_supply=a[0], bush=a[1]), load=a[2], tol=1e-12)
         return jnp.stack([r.mean_temperature, r.max_temperature, r.scene.eccentricity])
     x = jnp.array([40.0, 500.0, 1e4])
     J = np.asarray(jax.jacfwd(f)(x))
@@ -112,9 +113,10 @@ def test_derivatives_against_central_differences():
         e = np.zeros(3)
         e[i] = step
         fd = (np.asarray(f(x + e)) - np.asarray(f(x - e))) / (2 * step)
-        # 3e-6: under Reynolds conditions the coupled Jacobian's condition number is ~5e7 (the
-        # rupture's cells) against ~6e4 with "jfo", where the same comparison agrees to 2e-8
-        np.testing.assert_allclose(J[:, i], fd, rtol=3e-6)
+        # 5e-6: under Reynolds conditions the coupled Jacobian's condition number is ~5e7 (the
+        # rupture's cells) against ~6e4 with "jfo", where the same comparison agrees to 2e-8; the
+        # film's Newton tolerance leaves ~3e-10 K of scatter in T_max, 3e-6 of its difference in the load
+        np.testing.assert_allclose(J[:, i], fd, rtol=5e-6)
 
 
 def test_runaway_and_bad_input_are_refused_by_name():

@@ -265,14 +265,33 @@ def _round(carry, params, st: _Static, shape):
 _round_compiled = jax.jit(_round, static_argnums=(2, 3))
 
 
-def _solver(params, st: _Static, shape, x0):
-    """Rounds (:func:`_round`) from x0 (the film at the supply temperature) and T' = 0, under a
-    trace in a while_loop, else in Python over one compiled round."""
+@partial(jax.jit, static_argnums=(2, 3))
+def _first_temperatures(x0, params, st: _Static, shape):
+    """The rounds' start: the energy equation's field G0 at the cold film (x0, the supply
+    temperature's viscosity), scaled to the mean rise r that a film whose dissipation followed
+    its viscosity, flows held, would have: r = mean(G0) eta(T_s + r) / eta(T_s) (bisection).
+    Near the answer, so that the first rounds' films move little (each cell the cavity moves
+    costs the film's Newton a step)."""
+    zero = jnp.zeros(shape, x0.dtype)
+    pr, cfg = _film_params(zero, params, st)
+    blocks, rhs, _ = _energy(x0, zero, params, st, pr, cfg)
+    G0 = energy.cyclic_block_solve(blocks, rhs)
+    mean0 = jnp.maximum(_area_mean(G0, params, st), 0.0)
+    oil, T_s = params["oil"], params["heat"].T_supply
+    r = _solve.bisect(lambda r: r - mean0 * oil.viscosity(T_s + r) / oil.viscosity(T_s), jnp.zeros_like(mean0),
+                      mean0, 60, sign_lo=-1.0)
+    return jnp.where(mean0 > 0, G0 * r / jnp.where(mean0 > 0, mean0, 1.0), zero)
+
+
+def _solver(params, st: _Static, shape, x0, T0):
+    """Rounds (:func:`_round`) from x0 (the film at the supply temperature) and T' = T0
+    (:func:`_first_temperatures`), under a trace in a while_loop, else in Python over one
+    compiled round."""
     f = jnp.result_type(float)
     heat = params["heat"]
     N = shape[0] * shape[1]
     history = (jnp.zeros((ANDERSON, N), f), jnp.zeros((ANDERSON, N), f), jnp.zeros(N, f), jnp.zeros(N, f))
-    carry = (x0, jnp.zeros(shape, f), jnp.asarray(jnp.inf, f), jnp.asarray(0), jnp.asarray(0), history)
+    carry = (x0, T0, jnp.asarray(jnp.inf, f), jnp.asarray(0), jnp.asarray(0), history)
     hot = lambda T_rise: jnp.max(heat.T_supply + T_rise) > heat.T_limit       # noqa: E731
 
     def cond(c):
@@ -371,7 +390,8 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
                   heat=heat, housing=housing, shaft=shaft, shift=shift)
     shape = (options.n, options.m + 1)
-    # the film at the supply temperature: the first round's start
+    # the first round's start: the isothermal film at the supply temperature, and the energy
+    # equation's field there scaled to a mean-rise estimate (_first_temperatures)
     at = dict(temperature=heat.T_supply, shift=shift) if st.deformable and shift is not None else {}
     cold = finite_journal_bearing(R, radial_clearance, lubricant.viscosity(heat.T_supply), load, length,
                                   housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
@@ -379,7 +399,8 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                                   supply_width=supply_width, options=options, throw=False, **at)
     pr0, cfg0 = _film_params(jnp.zeros(shape), params, st)
     x0 = jax.lax.stop_gradient(_finite_setup.start_from(cold, pr0, cfg0))
-    u, stats = _solve.implicit_root(lambda p: _solver(p, st, shape, x0),
+    T0 = jax.lax.stop_gradient(_first_temperatures(x0, params, st, shape))
+    u, stats = _solve.implicit_root(lambda p: _solver(p, st, shape, x0, T0),
                                     lambda uu, aux, p: _residual(uu, p, st, shape),
                                     _linear_solver(st, shape))(params)
     out = _outputs(u, params, st, shape, stats, lubricant)
