@@ -186,3 +186,19 @@ def test_against_ross_thd_one_case():
 @pytest.mark.parametrize("case", ROSS_CASES, ids=lambda c: f"{c['l_over_d']}-{c['speed_rpm']:.0f}-{c['specific_load_MPa']}")
 def test_against_ross_thd(case):
     check_ross(case, 64, 16)
+
+
+def test_a_sweep_starts_from_its_last_point():
+    """initial=: the next speed from the last point's film and temperatures reaches the cold
+    start's solution (to the rounds' tolerance) in fewer rounds."""
+    heat = vjax.FilmHeat(T_supply=40.0)
+    first = bearing(heat)
+    cold = vjax.thermal_film_bearing(RB, C, OIL, 1e4, heat, length=0.1, omega_shaft=1.2 * OMEGA,
+                                     options=vjax.FiniteJournalOptions(n=32, m=8))
+    warm = vjax.thermal_film_bearing(RB, C, OIL, 1e4, heat, length=0.1, omega_shaft=1.2 * OMEGA,
+                                     options=vjax.FiniteJournalOptions(n=32, m=8), initial=first)
+    assert int(warm.iterations) < int(cold.iterations)
+    np.testing.assert_allclose(np.asarray(warm.temperature), np.asarray(cold.temperature), rtol=0, atol=1e-7)
+    assert abs(float(warm.scene.eccentricity) - float(cold.scene.eccentricity)) < 1e-8
+    with pytest.raises(ValueError, match="initial"):
+        bearing(heat, initial=first.scene)

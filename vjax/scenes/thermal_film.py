@@ -356,7 +356,8 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                          shift=None, omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2,
                          supply_angle=math.pi, supply_width=1.0, cavitation="reynolds",
                          options: FiniteJournalOptions = FiniteJournalOptions(), tol=None, max_iter=80,
-                         relax=0.5, throw=True) -> FilmTemperatureResult:
+                         relax=0.5, initial: FilmTemperatureResult | None = None,
+                         throw=True) -> FilmTemperatureResult:
     """A finite journal bearing with its film's temperature field (module docs; docs/theory.md
     §19.2): the arguments of :func:`vjax.journal_bearing` with ``length=`` for an aligned
     bearing with an axial groove at ``supply_angle`` (held at ambient pressure), the
@@ -365,7 +366,8 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
     striated film carries the flux at rupture and shears its liquid only) or "jfo".
 
     ``tol`` (K): of the last round's largest change (None: 1e-9 K in float64). ``max_iter``:
-    rounds. ``relax``: each round's update factor. Thermal runaway (the film passing
+    rounds. ``relax``: each round's update factor. ``initial``: a result of the same grid to
+    start from (a sweep's last point: its film and temperatures). Thermal runaway (the film passing
     ``heat.T_limit``) and failures raise :class:`~vjax.ConvergenceError` (``throw=False``: the
     result code). Returns :class:`FilmTemperatureResult`."""
     lubricant = as_lubricant(lubricant, "lubricant")
@@ -390,6 +392,14 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
                   heat=heat, housing=housing, shaft=shaft, shift=shift)
     shape = (options.n, options.m + 1)
+    pr0, cfg0 = _film_params(jnp.zeros(shape), params, st)
+    if initial is not None:
+        if not isinstance(initial, FilmTemperatureResult) or initial.temperature.shape != shape:
+            raise ValueError(f"initial must be a FilmTemperatureResult of the same grid (n = {options.n}, "
+                             f"m = {options.m})")
+        x0 = jax.lax.stop_gradient(_finite_setup.start_from(initial.scene, pr0, cfg0))
+        T0 = jax.lax.stop_gradient(initial.temperature - heat.T_supply)
+        return _finish(x0, T0, params, st, shape, lubricant, heat, throw)
     # the first round's start: the isothermal film at the supply temperature, and the energy
     # equation's field there scaled to a mean-rise estimate (_first_temperatures)
     at = dict(temperature=heat.T_supply, shift=shift) if st.deformable and shift is not None else {}
@@ -397,9 +407,13 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                                   housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
                                   load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle,
                                   supply_width=supply_width, options=options, throw=False, **at)
-    pr0, cfg0 = _film_params(jnp.zeros(shape), params, st)
     x0 = jax.lax.stop_gradient(_finite_setup.start_from(cold, pr0, cfg0))
     T0 = jax.lax.stop_gradient(_first_temperatures(x0, params, st, shape))
+    return _finish(x0, T0, params, st, shape, lubricant, heat, throw)
+
+
+def _finish(x0, T0, params, st: _Static, shape, lubricant, heat, throw):
+    """The rounds from (x0, T0), implicitly differentiated, and the result."""
     u, stats = _solve.implicit_root(lambda p: _solver(p, st, shape, x0, T0),
                                     lambda uu, aux, p: _residual(uu, p, st, shape),
                                     _linear_solver(st, shape))(params)
