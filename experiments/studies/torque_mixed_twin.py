@@ -94,7 +94,7 @@ def main(out_dir, quick=False):
     from fitting import plots
     from fitting import torque as ft
     from vjax import Material
-    from experiments.studies.torque_twin import JOURNAL_NU, twin_material
+    from experiments.studies.torque_twin import JOURNAL_NU, perturbation, rig_data, twin_material
 
     t_all = time.perf_counter()
     stem = "torque_mixed_twin"
@@ -124,20 +124,13 @@ def main(out_dir, quick=False):
         share.append(float(r.asperity_share))
     share = np.asarray(share)
 
-    rng = np.random.default_rng(11)
-    noisy = tq_true * (1.0 + 0.05 * rng.normal(size=tq_true.shape))
-    sigma = 0.05 * np.abs(tq_true)
-    csv_path = out / f"{stem}_data.csv"
-    ft.write_torque_csv(csv_path, ft.TorqueData(rpm, T, load, noisy, sigma),
-                        comments=[f"twin experiment: {model.scene}", "true torque x (1 + 0.05 N(0,1)), seed 11"])
-    data = ft.read_torque_csv(csv_path)
+    data = rig_data(out / f"{stem}_data.csv", model.scene, rpm, T, load, tq_true, 0.05, 11)
+    sigma = data.scatter
 
     P = ft.Params.of(true_mat, shift, extras=("mu_b", "sigma"))
     x_true = P.pack(true_mat, shift, truth_extras)
-    prng = np.random.default_rng(3)            # torque_twin's draw for the material
     nm = P.n_material
-    factor = 1.0 + prng.choice([-1.0, 1.0], size=nm) * prng.uniform(0.2, 0.5, size=nm)
-    start_mat, start_shift = P.physical(x_true[:nm] + np.log(factor))
+    start_mat, start_shift = P.physical(x_true[:nm] + perturbation(nm))       # torque_twin's draw for the material
     extras0 = {"mu_b": 0.15, "sigma": 0.6e-6}
 
     jac_t, _ = ft.residual_jacobian(P, model, data)

@@ -108,7 +108,7 @@ def main(out_dir, quick=False, scene="pin"):
     from fitting import torque as ft
     from vjax import Material
     from experiments.studies.torque_mixed_twin import identifiability_lines, markdown_table
-    from experiments.studies.torque_twin import JOURNAL_NU, twin_material
+    from experiments.studies.torque_twin import JOURNAL_NU, perturbation, rig_data, twin_material
 
     t_all = time.perf_counter()
     stem = f"torque_thermal_twin_{scene}"
@@ -123,20 +123,13 @@ def main(out_dir, quick=False, scene="pin"):
     print(f"hA = {hA:g} {unit}; true torques {time.perf_counter() - t0:.1f} s, converged {bool(ok.all())}; "
           f"T_eff - T_amb: {np.round(T_eff - T, 2)}", flush=True)
 
-    rng = np.random.default_rng(5)
-    noisy = tq_true * (1.0 + 0.03 * rng.normal(size=tq_true.shape))
-    sigma = 0.03 * np.abs(tq_true)
     csv_path = out / f"{stem}_data.csv"
-    ft.write_torque_csv(csv_path, ft.TorqueData(rpm, T, load, noisy, sigma),
-                        comments=[f"twin experiment: {thermal.scene}", "T: the ambient temperature",
-                                  "true torque x (1 + 0.03 N(0,1)), seed 5"])
-    data = ft.read_torque_csv(csv_path)
+    data = rig_data(csv_path, thermal.scene, rpm, T, load, tq_true, 0.03, 5, ["T: the ambient temperature"])
+    sigma = data.scatter
 
     P = ft.Params.of(true_mat, true_shift)
     x_true = P.pack(true_mat, true_shift)
-    prng = np.random.default_rng(3)
-    factor = 1.0 + prng.choice([-1.0, 1.0], size=x_true.size) * prng.uniform(0.2, 0.5, size=x_true.size)
-    start_mat, start_shift = P.physical(x_true + np.log(factor))
+    start_mat, start_shift = P.physical(x_true + perturbation(x_true.size))
 
     steps, polish = (20, 10) if quick else (150, 30)
     cases = [("isothermal", iso, None), ("thermal, hA known", thermal, None),

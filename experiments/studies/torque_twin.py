@@ -68,6 +68,25 @@ def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0
 JOURNAL_NU = 0.4
 
 
+def rig_data(path, scene, rpm, T, load, true_torque, scatter, seed, comments=()):
+    """Synthetic rig data, as a rig's CSV would give them: the true torques times
+    (1 + ``scatter`` N(0, 1)) (random seed ``seed``), each with ``scatter`` of the true torque as
+    its scatter, written to ``path`` and read back. ``scene``: the model's description."""
+    from fitting import torque as ft
+    rng = np.random.default_rng(seed)
+    noisy = true_torque * (1.0 + scatter * rng.normal(size=true_torque.shape))
+    ft.write_torque_csv(path, ft.TorqueData(rpm, T, load, noisy, scatter * np.abs(true_torque)),
+                        comments=[f"twin experiment: {scene}", *comments,
+                                  f"true torque x (1 + {scatter:g} N(0,1)), seed {seed}"])
+    return ft.read_torque_csv(path)
+
+
+def perturbation(size, seed=3):
+    """Log factors of a start off by 20-50 % with random signs, one per parameter."""
+    rng = np.random.default_rng(seed)
+    return np.log(1.0 + rng.choice([-1.0, 1.0], size=size) * rng.uniform(0.2, 0.5, size=size))
+
+
 def _scene(name, quick):
     """(model, load per unit length of each (T, load) condition after the first two, speeds
     (rpm), (lowest, highest) patch speed per shaft speed)."""
@@ -119,21 +138,14 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", 
     print(f"true torques: {time.perf_counter() - t0:.1f} s (compile + {len(rpm)} solves), converged "
           f"{bool(np.all(ok))}", flush=True)
     tq_true = np.asarray(tq_true)
-    rng = np.random.default_rng(7)
-    noisy = tq_true * (1.0 + 0.05 * rng.normal(size=tq_true.shape))
-    sigma = 0.05 * np.abs(tq_true)
     csv_path = out / f"{stem}_data.csv"
-    ft.write_torque_csv(csv_path, ft.TorqueData(rpm, T, load, noisy, sigma),
-                        comments=[f"twin experiment: {model.scene}", "true torque x (1 + 0.05 N(0,1)), seed 7",
-                                  "scatter = 5% of the true torque"])
-    data = ft.read_torque_csv(csv_path)
+    data = rig_data(csv_path, model.scene, rpm, T, load, tq_true, 0.05, 7)
+    sigma = data.scatter
 
     # perturbed start: moduli and WLF constants off by 20-50%, random sign
     P = ft.Params.of(true_mat, true_shift)
     x_true = P.pack(true_mat, true_shift)
-    prng = np.random.default_rng(3)
-    factor = 1.0 + prng.choice([-1.0, 1.0], size=x_true.size) * prng.uniform(0.2, 0.5, size=x_true.size)
-    start_mat, start_shift = P.physical(x_true + np.log(factor))
+    start_mat, start_shift = P.physical(x_true + perturbation(x_true.size))
 
     # gradient check of the loss (torque + DMA) at the start; the quick journal leaves it to
     # tests/test_torque_journal.py (two more compilations of the journal solve, 2 min)
