@@ -239,7 +239,8 @@ def test_failure_is_reported_not_nan_and_auto_recovers():
     sol = jax.jit(lambda eta: journal_bearing(RB, CB, eta, LOAD, throw=False, options=newton, **kw))(ETAB)
     assert not bool(sol.converged)
     assert int(sol.iterations) >= 1
-    for leaf in jax.tree_util.tree_leaves(sol):
+    assert float(sol.film_parameter) == np.inf      # h_min / sigma of smooth surfaces
+    for leaf in jax.tree_util.tree_leaves(dataclasses.replace(sol, film_parameter=sol.min_film)):
         assert np.all(np.isfinite(np.asarray(leaf, dtype=float)))
     auto = journal_bearing(RB, CB, ETAB, LOAD, options=OPT64, **kw)
     assert bool(auto.converged) and int(auto.stages) > 0
@@ -357,6 +358,8 @@ def test_float32_runs_without_nan():
         for args, kw in (((0.05, 5e-5, 0.01, 2e5), dict(omega_shaft=100.0)),
                          ((0.1, 5e-4, 1e-3, 220.0), dict(omega_shaft=-0.4, omega_housing=0.2, housing=m))):
             s = vjax.journal_bearing(*args, options=vjax.JournalOptions(n=32), throw=False, **kw)
+            assert float(s.film_parameter) == np.inf      # h_min / sigma of smooth surfaces
+            s = dataclasses.replace(s, film_parameter=s.min_film)
             leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
             assert s.pressure.dtype == np.float32, s.pressure.dtype
             assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)

@@ -36,6 +36,8 @@ from __future__ import annotations
 
 import jax.numpy as jnp
 
+from .roughness import shear_flow_factor
+
 CAVITATION = ("reynolds", "jfo", "half_sommerfeld", "sommerfeld")
 JFO_SMOOTHING = (1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 1e-4)   # the solvers' homotopy of the "jfo" switch, if needed
 
@@ -98,15 +100,37 @@ def face_fraction(fraction, v):
     return jnp.where(v >= 0, fraction, jnp.roll(fraction, -1))
 
 
-def face_fluxes(p, h, R, eta, v, fraction=None):
+def couette_flux(h, v, rough=None, sliding=0.0):
+    """The flux the surfaces' motion carries through a film ``h`` (m^2/s per unit width): v h
+    for smooth surfaces; with ``rough`` (:class:`~vjax.films.roughness.Roughness`) Patir and
+    Cheng's v h_T + (sliding/2) Vr sigma Phi_s(H_c), ``sliding`` (m/s) the speed of the
+    surface whose roughness counts positive in Vr (the journal) relative to the other (h_T
+    the expected gap, or h with ``rough.couette == "nominal"``)."""
+    if rough is None:
+        return v * h
+    Hc, _ = rough.clipped(h)
+    base = rough.expected_gap(h) if rough.couette == "expected" else h
+    return v * base + 0.5 * sliding * rough.Vr * rough.sigma * shear_flow_factor(Hc, rough.gamma)
+
+
+def conductance_gap(h, rough=None):
+    """The Poiseuille conductance's gap term (m^3): h^3, or with ``rough`` Patir and Cheng's
+    phi_x(H_c) h_c^3 (:meth:`~vjax.films.roughness.Roughness.poiseuille`)."""
+    return h**3 if rough is None else rough.poiseuille(h)
+
+
+def face_fluxes(p, h, R, eta, v, fraction=None, rough=None, sliding=0.0):
     """Face film h_f (m), pressure gradient dp/ds (Pa/m) and flux q (m^2/s) at the face
     between cell i and i + 1; with a film ``fraction`` (``"jfo"``) the Couette part carries
-    the upwind cell's liquid only."""
+    the upwind cell's liquid only; with ``rough`` surfaces Patir and Cheng's average flow
+    (:func:`conductance_gap`, :func:`couette_flux` with the surfaces' ``sliding`` speed)."""
     dth = 2 * jnp.pi / p.shape[0]
     hf = 0.5 * (h + jnp.roll(h, -1))
     dpds = (jnp.roll(p, -1) - p) / (R * dth)
-    couette = v * hf if fraction is None else v * hf * face_fraction(fraction, v)
-    return hf, dpds, -hf**3 * dpds / (12 * eta) + couette
+    couette = couette_flux(hf, v, rough, sliding)
+    if fraction is not None:
+        couette = couette * face_fraction(fraction, v)
+    return hf, dpds, -conductance_gap(hf, rough) * dpds / (12 * eta) + couette
 
 
 # The solvers find a Reynolds film in two stages, the rupture on a face, then within its cell

@@ -91,8 +91,5 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         return finite_journal_bearing(R, radial_clearance, viscosity, load, length, supply_width=supply_width,
                                       tilt=tilt, groove=groove or "fixed", roughness=roughness,
                                       options=FiniteJournalOptions() if options is None else options, **common)
-    if roughness is not None:
-        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=); the "
-                         "infinitely long bearing's film has no roughness model yet")
-    return long_journal_bearing(R, radial_clearance, viscosity, load, groove=groove,
+    return long_journal_bearing(R, radial_clearance, viscosity, load, groove=groove, roughness=roughness,
                                 options=JournalOptions() if options is None else options, **common)

@@ -177,9 +177,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
             options=FiniteJournalOptions() if options is None else options, **common)
         return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=K, damping=C, speed=speed, steady=sol,
                                    length=jnp.asarray(length, whirl.dtype))
-    if roughness is not None:
-        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=)")
-    sol, Z, C = long_coefficients(R, radial_clearance, viscosity, load, whirl, groove=groove,
+    sol, Z, C = long_coefficients(R, radial_clearance, viscosity, load, whirl, groove=groove, roughness=roughness,
                                   options=JournalOptions() if options is None else options, **common)
     return JournalCoefficients(whirl=whirl, impedance=Z, stiffness=Z.real, damping=C, speed=speed, steady=sol)
 

@@ -1,5 +1,6 @@
-"""Stribeck curves: a finite journal bearing with rough surfaces swept in speed, from boundary
-friction (the asperities carry the load) through mixed lubrication to a full film.
+"""Stribeck curves: a journal bearing with rough surfaces (finite, or infinitely long with
+``length=None``: per unit length) swept in speed, from boundary friction (the asperities carry
+the load) through mixed lubrication to a full film.
 
 Each point is the steady state of :func:`vjax.journal_bearing` with ``roughness=``. The sweep
 runs down from the highest speed (a full film: the rigid estimate starts Newton well), each
@@ -17,6 +18,7 @@ import numpy as np
 from ..._core import checks
 from .bearing import journal_bearing
 from .finite.steady import nests
+from .options import FiniteJournalOptions
 
 LIFT_OFF_SHARE = 0.01     # the lift-off speed: where the asperities' share of the load falls to this
 
@@ -26,10 +28,11 @@ class StribeckCurve:
     """A Stribeck sweep (numpy arrays over ``speed``, ascending).
 
     ``speed`` (rad/s, the turning surface's), ``hersey`` eta omega / p_mean (p_mean = W / (L D),
-    D = 2 R), ``friction_coefficient``, ``friction_viscous`` and ``friction_boundary`` (N),
+    D = 2 R; the infinitely long bearing's W / D, W per unit length), ``friction_coefficient``,
+    ``friction_viscous`` and ``friction_boundary`` (N; N/m for the infinitely long bearing),
     ``asperity_share``, ``eccentricity``, ``film_parameter`` lambda = h_min / sigma, ``converged``
     and ``result`` (the solver's code, 0 = converged) per point; ``results`` the scene's
-    :class:`~vjax.FiniteJournalResult` of each point. ``lift_off_speed``: where the asperity
+    :class:`~vjax.FiniteJournalResult` (:class:`~vjax.JournalResult`) of each point. ``lift_off_speed``: where the asperity
     share falls to 1 % (log-linear interpolation between converged points; None if the sweep
     does not cross it); ``minimum_speed``: the Stribeck minimum, the speed of least friction
     (a parabola in log speed through the least converged point and its neighbours; None if the
@@ -55,17 +58,16 @@ class StribeckCurve:
                 f"{int(self.converged.sum())} converged, lift-off {lift})")
 
 
-def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length, roughness, turning: str = "shaft",
+def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length=None, roughness, turning: str = "shaft",
                    progress=None, **kw) -> StribeckCurve:
-    """Sweep a finite journal bearing with rough surfaces over ``speeds`` (rad/s, positive) of the
+    """Sweep a journal bearing with rough surfaces over ``speeds`` (rad/s, positive) of the
     ``turning`` surface ("shaft" or "housing", the other at rest). The other arguments are those
-    of :func:`vjax.journal_bearing` (``length`` and ``roughness`` required; ``throw`` is False
-    for every point). ``progress``: called as progress(done, total) after each solve."""
+    of :func:`vjax.journal_bearing` (``roughness`` required; ``length`` None: the infinitely long
+    bearing, ``load`` per unit length; ``throw`` is False for every point). ``progress``: called
+    as progress(done, total) after each solve."""
     checks.one_of("turning", turning, ("shaft", "housing"))
     if roughness is None:
         raise ValueError("roughness: a Stribeck curve needs rough surfaces (a vjax.Roughness)")
-    if length is None:
-        raise ValueError("length: a Stribeck curve is computed for a finite bearing (give its length, m)")
     for name in ("omega_shaft", "omega_housing", "initial", "throw"):
         if name in kw:
             raise ValueError(f"{name}: set by the sweep (the speeds, the warm starts, throw=False)")
@@ -82,7 +84,7 @@ def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length, roug
     # root than the last point's (a speed step moves a film's cavity by many cells, one per
     # Newton step from a warm start): cold starts, the warm one kept for failures
     options = kw.get("options")
-    cold = options is not None and nests(options)
+    cold = isinstance(options, FiniteJournalOptions) and nests(options)
     results = [None] * speeds.size
     done, total = 0, speeds.size
     last = None
@@ -103,7 +105,7 @@ def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length, roug
     field = lambda name: np.array([float(np.asarray(getattr(r, name))) for r in results])   # noqa: E731
     converged = np.array([bool(r.converged) for r in results])
     W = float(np.linalg.norm(np.atleast_1d(np.asarray(load, float))))
-    p_mean = W / (float(length) * 2 * float(R))
+    p_mean = W / ((1.0 if length is None else float(length)) * 2 * float(R))
     mu = field("friction_coefficient")
     share = field("asperity_share")
     return StribeckCurve(

@@ -29,6 +29,14 @@ motion changes the film directly, -(dX cos theta + dY sin theta), and its rate i
 (the turning frame is not needed, and the linearization is again the exact derivative of the
 steady model). Memory is the periodic steady state (a truncated load history has no steady
 small-motion response).
+
+Rough surfaces (mixed lubrication, rigid bodies): the film is Patir and Cheng's average flow,
+whose stored volume per unit area is the expected gap h_T (the gap its Couette flux carries), so
+the squeeze term is R dh_T/dt = R (dh_T/dh) dh/dt; the surfaces' sliding speed, which sets the
+shear flow, is left unchanged by the frame's turning (its change c dgamma/dt is O(c/R), as the
+entrainment speed's R dgamma/dt is taken at the bore's radius). The asperities' force follows
+the film at once: it adds a stiffness, d(asperity force)/d(position), and no damping (their
+force turns with the frame as the film's does).
 """
 from __future__ import annotations
 
@@ -60,6 +68,7 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: f
     n = pz.shape[0]
     theta, alpha = grid(n)
     cos, sin = jnp.cos(theta), jnp.sin(theta)
+    rough = pr.rough
     pz_p, fraction = reynolds.pressure_and_fraction(pz, cfg.cavitation)
     p = pz_p * pr.p_ref
     h = pr.c * (1 - x0[n] * jnp.cos(theta - film.offset(x0, cfg))) + U
@@ -72,13 +81,20 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: f
         hdot = -motion[2] * cos + Udot
         v = pr.v - pr.R * motion[3] / (x0[n] * pr.c)
     jfo = cfg.cavitation == "jfo"
-    hf, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v, fraction if jfo else None)
-    # the film's own growth R d(h f)/dt, f the liquid fraction (1 but in a "jfo" cavity)
+    sliding = film.sliding(pr)
+    hf, _, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, v, fraction if jfo else None, rough, sliding)
+    # the film's own growth R d(h f)/dt, f the liquid fraction (1 but in a "jfo" cavity); on rough
+    # surfaces the stored gap is the expected one, h_T (or h with rough.couette == "nominal")
+    stored = (lambda g: g) if rough is None or rough.couette == "nominal" else rough.expected_gap
+    gap, gap_rate = jax.jvp(stored, (h,), (hdot,))
     fraction_rate = jnp.where(pz < 0, pzdot, 0.0) if jfo else 0.0
-    squeeze = pr.R * (hdot * fraction + h * fraction_rate)
-    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze, couette=v * hf, v=v)
+    squeeze = pr.R * (gap_rate * fraction + gap * fraction_rate)
+    r = reynolds.cell_equations(pz, q, pr.q_ref, cfg.cavitation, squeeze=squeeze,
+                                couette=reynolds.couette_flux(hf, v, rough, sliding), v=v)
     r = r.at[pr.groove].set(pz[pr.groove] - pr.ps / pr.p_ref)
     p_load = reynolds.load_pressure(p, cfg.cavitation)
+    if rough is not None:     # the asperities' pressure at this film (rigid bodies: U is zero)
+        p_load = p_load + rough.asperity_pressure(h)
     F = -pr.R * 2 * alpha * jnp.stack([jnp.sum(p_load * cos), jnp.sum(p_load * sin)])
     return r, F
 
@@ -102,8 +118,13 @@ def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
         return _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr, cfg)
 
     args = (pz0, zero, U0, zero, jnp.zeros(4, x0.dtype))
-    F0 = eqs(*args)[1]
+    F0 = eqs(*args)[1]     # the film's and the asperities' force: it turns with the frame
     J_p, J_pd, J_U, J_Ud, J_s = jax.jacfwd(lambda *a: eqs(*a)[0], argnums=(0, 1, 2, 3, 4))(*args)
+    # the asperities' force follows the position at once (rigid bodies): a stiffness, per unit
+    # dX, dY; none without them (the film's force changes only through its pressure, G_p dp)
+    F_s = jnp.zeros((2, 2), x0.dtype)
+    if pr.rough is not None:
+        F_s = jax.jacfwd(lambda m: eqs(*args[:4], m)[1])(args[4])[:, :2]
     # d p_load = w dp (w: the pressurized fraction of each cell under half-Sommerfeld) and the
     # film force it makes, per unit change of pz
     p_load0 = reynolds.load_pressure(pz0 * pr.p_ref, cfg.cavitation)
@@ -128,7 +149,7 @@ def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
         if not cfg.fixed_groove:     # the turning steady deformation lags in a viscoelastic body
             b_Y = b_Y + GU @ rot / e
         dpz = jnp.linalg.solve(A, -jnp.stack([b_X, b_Y], axis=1))
-        dF = G_p @ dpz
+        dF = G_p @ dpz + F_s
         if not cfg.fixed_groove:     # the steady force turns with the frame by dY / e
             dF = dF.at[:, 1].add(jnp.stack([-F0[1], F0[0]]) / e)
         return -dF
@@ -160,15 +181,19 @@ def _linearized(x0, pr: film.Params, bodies, whirl, cfg: film.Config):
 def long_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None, omega_shaft=0.0,
                       omega_housing=0.0, load_angle=-math.pi / 2, cavitation="reynolds", supply_angle=math.pi,
                       supply_pressure=0.0, groove=None, temperature=None, shift=None, initial=None,
-                      options: JournalOptions = JournalOptions(), throw=True):
+                      options: JournalOptions = JournalOptions(), throw=True, roughness=None):
     """The steady :class:`JournalResult` (periodic memory) and its (Z, C) (complex N/m^2, N s/m^2;
     (k, 2, 2), absolute axes) at the whirl frequencies ``whirl`` (k,) (rad/s), for
-    :func:`vjax.journal_coefficients` without ``length`` (its arguments)."""
+    :func:`vjax.journal_coefficients` without ``length`` (its arguments; ``roughness`` with rigid
+    bodies only)."""
     groove = "line_of_centres" if groove is None else groove
+    if roughness is not None and (housing is not None or shaft is not None):
+        raise ValueError("roughness with a deformable body: the dynamic coefficients of a mixed film on a "
+                         "deformable body are not built yet (rigid bodies: housing=None, shaft=None)")
     arguments = dict(housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
                      load_angle=load_angle, memory="periodic", cavitation=cavitation, supply_angle=supply_angle,
                      supply_pressure=supply_pressure, groove=groove, temperature=temperature, shift=shift,
-                     options=options)
+                     options=options, roughness=roughness)
     sol = long_journal_bearing(R, radial_clearance, viscosity, load, initial=initial, throw=throw, **arguments)
     pr, cfg, hb, sb = film.setup(R, radial_clearance, viscosity, load, **arguments)
     x0 = film.start(sol.pressure, sol.film_fraction, sol.eccentricity, sol.attitude_angle, pr.p_ref)

@@ -16,6 +16,7 @@ from ...._core import checks, krylov as _krylov, scene as _scene, solve as _solv
 from .... import reference
 from ....bodies.operator import RingOperator, grid
 from ....films import banded, reynolds
+from ....films.roughness import Roughness
 from ..options import JournalOptions
 from ..setup import bodies_at, check_arguments
 
@@ -44,6 +45,7 @@ class Params:
     q_ref: jax.Array
     op_B: RingOperator | None
     op_J: RingOperator | None
+    rough: Roughness | None      # the surfaces' roughness (mixed lubrication); None: smooth
     x0: jax.Array                # starting point: travels with the parameters, not differentiated
 
 
@@ -58,7 +60,34 @@ class Config:
 def offset(x, cfg: Config):
     """Angle of the line of centres on the grid: 0 on the line-of-centres grid, the
     attitude angle on the load-line grid of a fixed groove."""
-    return x[-1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
+    return x[cfg.options.n + 1] if cfg.fixed_groove else jnp.zeros((), x.dtype)
+
+
+def asperity_unknowns(pr: Params, cfg: Config) -> int:
+    """How many asperity-pressure unknowns follow (eps, attitude): one per cell, n, when rough
+    surfaces meet a deformable body (the asperity pressure loads the body, whose deformation
+    sets the gap the asperities see: an implicit pair, solved with the film, as in the finite
+    film); none otherwise (rigid bodies: the asperity pressure follows the film explicitly)."""
+    return cfg.options.n if pr.rough is not None and (pr.op_B is not None or pr.op_J is not None) else 0
+
+
+def sliding(pr: Params):
+    """U_journal - U_bore (m/s): the surfaces' relative speed (Vr's sign: the journal's roughness
+    counts positive)."""
+    return pr.omega_J * pr.RJ - pr.omega_B * pr.R
+
+
+def film_capacity(eps, pr: Params):
+    """The rigid half-Sommerfeld film's load capacity (N/m) at eccentricity ratio eps < 1."""
+    return 12 * pr.eta * jnp.abs(pr.v) * pr.R**2 / pr.c**2 * reference.half_sommerfeld_load(eps)
+
+
+def asperity_capacity(eps, pr: Params, n: int):
+    """The load (N/m) the asperities of a rigid journal carry at eccentricity ratio eps (any,
+    > 1 where the nominal film closes): R dtheta sum p_a(c (1 - eps cos theta)) cos theta."""
+    theta, _ = grid(n)
+    p_a = pr.rough.asperity_pressure(pr.c * (1 - eps * jnp.cos(theta)))
+    return pr.R * (2 * jnp.pi / n) * jnp.sum(p_a * jnp.cos(theta))
 
 
 def load_number(pr: Params):
@@ -75,36 +104,60 @@ def gmres(matvec, precond):
 @partial(jax.jit, static_argnums=(1, 2))
 def guess(pr: Params, n, cfg: Config):
     """Rigid half-Sommerfeld estimate of the unknowns [p/p_ref, eps, attitude], the journal
-    moved with the bodies' rigid displacement under the load."""
+    moved with the bodies' rigid displacement under the load. With rough surfaces the
+    asperities' capacity adds to the film's (:func:`asperity_capacity`): at low speed they
+    carry the load at an eccentricity past 1, along the line of centres; and the asperity
+    unknowns (:func:`asperity_unknowns`) start at the rigid film of that position."""
     v = pr.v
-    eps = jnp.minimum(reference.half_sommerfeld_eccentricity(load_number(pr)), 0.95)
-    phi = jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
+    if pr.rough is None:
+        eps = jnp.minimum(reference.half_sommerfeld_eccentricity(load_number(pr)), 0.95)
+        share, centre = jnp.zeros((), pr.c.dtype), eps
+    else:
+        total = lambda e: film_capacity(jnp.minimum(e, 0.999), pr) + asperity_capacity(e, pr, n)  # noqa: E731
+        eps = _solve.bisect(lambda e: total(e) - pr.W, jnp.asarray(1e-6, pr.c.dtype), jnp.asarray(1.5, pr.c.dtype),
+                            60)
+        share = jnp.clip(asperity_capacity(eps, pr, n) / pr.W, 0.0, 1.0)
+        centre = jnp.where(share > 0.5, eps, jnp.minimum(eps, 0.95))     # where the journal is put
+        eps = jnp.minimum(eps, 0.95)                                       # the film's shape
+    # the asperities' force lies along the line of centres: their share turns the attitude to 0
+    phi = (1 - share) * jnp.sign(v) * jnp.arctan2(jnp.pi * jnp.sqrt(1 - eps**2), 2 * eps)
     # The load's mode-1 pressure moves the bodies rigidly by D (complex, m): place the journal
     # so that the film keeps the rigid estimate's shape and its angle to the load,
     # c eps e^{i beta} = c eps_r + D e^{i phi_r} = z (beta: angle of the film's minimum from
     # the line of centres), and let the pressure follow the film.
     s1 = sum(op.symbol[1] for op in (pr.op_B, pr.op_J) if op is not None)
-    z = pr.c * eps + s1 * pr.W / (pr.R * jnp.pi) * jnp.exp(1j * phi)
+    z = pr.c * centre + s1 * pr.W / (pr.R * jnp.pi) * jnp.exp(1j * phi)
     film_line = phi if cfg.fixed_groove else jnp.angle(z)      # grid angle of the film's minimum
     theta = grid(n)[0] - film_line
     p = (-12 * pr.eta * v * pr.R * eps * jnp.sin(theta) * (2 - eps * jnp.cos(theta))
          / (pr.c**2 * (2 + eps**2) * (1 - eps * jnp.cos(theta)) ** 2))
-    eps, phi = jnp.abs(z) / pr.c, phi - jnp.angle(z)
+    if pr.rough is not None:     # the film's share of the load, not the capacity at the clipped eps
+        p = p * jnp.minimum(1.0, (1 - share) * pr.W / film_capacity(eps, pr))
+    position = jnp.stack([jnp.abs(z) / pr.c, phi - jnp.angle(z)])
     # A small positive offset everywhere: with p = 0 exactly in the future cavity, the FB
     # Newton step can only grow the pressurized zone by one cell per iteration.
     p = jnp.maximum(p, 0.0) / pr.p_ref + 0.1
-    return jnp.concatenate([p, jnp.stack([eps, phi])])
+    x = jnp.concatenate([p, position])
+    if asperity_unknowns(pr, cfg):
+        rigid = pr.c * (1 - position[0] * jnp.cos(grid(n)[0] - offset(x, cfg)))
+        x = jnp.concatenate([x, pr.rough.asperity_pressure(rigid) / pr.p_ref])
+    return x
 
 
 def fields(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
     """Pressure, film, displacements and face fluxes for unknowns x (``smoothing``: of the
     "jfo" switch, see :func:`vjax.scenes.journal.long.steady._solver`; ``deformation``: u_B + u_J given instead of computed,
-    for the Newton preconditioner)."""
-    n = x.shape[0] - 2
+    for the Newton preconditioner). With rough surfaces (``pr.rough``) the fluxes are Patir and
+    Cheng's average flow and ``p_asp`` (Pa) the asperities' Greenwood-Tripp pressure, which
+    loads the bodies with the film's (zero for smooth surfaces); ``couette`` the faces' Couette
+    flux of a full film (m^2/s)."""
+    n = cfg.options.n
     theta, alpha = grid(n)
     pz, fraction = reynolds.pressure_and_fraction(x[:n], cfg.cavitation, smoothing)
     p = pz * pr.p_ref
     p_load = reynolds.load_pressure(p, cfg.cavitation)
+    implicit = asperity_unknowns(pr, cfg) > 0       # the asperity pressure an unknown (x's tail)
+    p_unknown = x[n + 2:] * pr.p_ref if implicit else None
     # Mode 1 of the loading pressure is the film force, which equals the load at equilibrium:
     # take it from the load (it moves the bodies rigidly, by up to hundreds of clearances for a
     # soft bore) so that Newton does not have to find it - the same root, a far milder system.
@@ -112,32 +165,49 @@ def fields(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None):
     if deformation is not None:
         uB, uJ = deformation, zero
     else:
-        P = jnp.fft.rfft(p_load)
+        P = jnp.fft.rfft(p_load if p_unknown is None else p_load + p_unknown)
         P = P.at[1].set(pr.W * jnp.exp(-1j * (offset(x, cfg) - x[n + 1])) / (pr.R * 2 * alpha))
         deform = lambda op: jnp.fft.irfft(op.symbol * P, n)
         uB = zero if pr.op_B is None else deform(pr.op_B)
         uJ = zero if pr.op_J is None else deform(pr.op_J)
     h = pr.c * (1 - x[n] * jnp.cos(theta - offset(x, cfg))) + uB + uJ
-    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None)
+    hf, dpds, q = reynolds.face_fluxes(p, h, pr.R, pr.eta, pr.v, fraction if cfg.cavitation == "jfo" else None,
+                                       pr.rough, sliding(pr))
+    gap_pressure = jnp.zeros_like(h) if pr.rough is None else pr.rough.asperity_pressure(h)
     return dict(theta=theta, dth=2 * alpha, p=p, p_load=p_load, uB=uB, uJ=uJ, h=h, hf=hf, dpds=dpds, q=q,
-                fraction=fraction)
+                fraction=fraction, couette=reynolds.couette_flux(hf, pr.v, pr.rough, sliding(pr)),
+                p_asp=gap_pressure if p_unknown is None else p_unknown,
+                # the asperity unknowns' equations: the pressure the gap gives, over p_ref
+                asperity_residual=None if p_unknown is None else (p_unknown - gap_pressure) / pr.p_ref)
 
 
 def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None, subcell=1.0):
-    """Cell balances (with cavitation), the groove datum and the load balance; and min film.
-    ``subcell``: 1 locates a Reynolds rupture within its cell, 0 on a face (:func:`newton`'s
-    first stage)."""
-    n = x.shape[0] - 2
+    """Cell balances (with cavitation), the groove datum and the load balance (film and
+    asperities); followed by the asperity unknowns' equations when there are some
+    (:func:`asperity_unknowns`); and the film's margin (:func:`margin`). ``subcell``: 1 locates a
+    Reynolds rupture within its cell, 0 on a face (:func:`newton`'s first stage)."""
+    n = cfg.options.n
     f = fields(x, pr, cfg, smoothing, deformation)
-    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation, couette=pr.v * f["hf"], v=pr.v,
+    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation, couette=f["couette"], v=pr.v,
                                 subcell=subcell)
     r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
-    Fx = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.cos(f["theta"]))
-    Fy = -pr.R * f["dth"] * jnp.sum(f["p_load"] * jnp.sin(f["theta"]))
+    carried = f["p_load"] + f["p_asp"]
+    Fx = -pr.R * f["dth"] * jnp.sum(carried * jnp.cos(f["theta"]))
+    Fy = -pr.R * f["dth"] * jnp.sum(carried * jnp.sin(f["theta"]))
     # the film balances the load, which points along the grid angle offset - attitude
     a = offset(x, cfg) - x[n + 1]
     bal = jnp.stack([Fx / pr.W + jnp.cos(a), Fy / pr.W + jnp.sin(a)])
-    return jnp.concatenate([r, bal]), jnp.min(f["h"])
+    r = jnp.concatenate([r, bal])
+    if f["asperity_residual"] is not None:
+        r = jnp.concatenate([r, f["asperity_residual"]])
+    return r, margin(f["h"], pr)
+
+
+def margin(h, pr: Params):
+    """The film's margin (m), positive where the model holds: min h for smooth surfaces; the
+    clearance for rough ones, whose model holds for any nominal film (a closed one is an
+    asperity layer compressed beyond its mean planes, carrying the load)."""
+    return jnp.min(h) if pr.rough is None else pr.c
 
 
 def effective_eps(h, c, offset=0.0):
@@ -155,9 +225,10 @@ def newton(x0, pr, cfg, smoothing=0.0, subcell=True):
     sub-cell rupture's square root makes Newton creep). ``subcell`` (a traced bool) False stops
     after the first stage: a start for another solve (a continuation's intermediate stage,
     JFO's Reynolds start) needs no more."""
-    n = x0.shape[0] - 2
+    n = cfg.options.n
     # a trust cap on the two geometric unknowns (eps, attitude)
-    cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3)]).astype(x0.dtype)
+    cap = jnp.concatenate([jnp.full(n, jnp.inf), jnp.full(2, 0.3), jnp.full(x0.shape[0] - n - 2, jnp.inf)])
+    cap = cap.astype(x0.dtype)
 
     def stage(x, subcell):
         def fn(x, state):
@@ -196,7 +267,7 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
     its lowest ``krylov_modes`` Fourier modes, which carry most of a body's compliance
     (|K_k| ~ 1/k), so M = tridiagonal + rank k and is solved by Woodbury (:mod:`vjax.films.banded`).
     For rigid bodies M = J exactly: GMRES converges in one step."""
-    n = x.shape[0] - 2
+    n = cfg.options.n
     N, dtype = n + 2, x.dtype
     f = fields(x, pr, cfg, smoothing)
     deformation = f["uB"] + f["uJ"]
@@ -239,10 +310,11 @@ def linear_model(x, pr: Params, cfg: Config, smoothing=0.0, subcell=1.0):
 
 def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, omega_housing, load_angle, memory,
           cavitation, supply_angle, supply_pressure, temperature, shift, options: JournalOptions,
-          groove="line_of_centres"):
+          groove="line_of_centres", roughness: Roughness | None = None):
     """Checked arguments of :func:`vjax.journal_bearing` (``options`` a checked
     :class:`~vjax.JournalOptions`) -> (parameters with a zero start, config, housing body,
-    shaft body) - the bodies at ``temperature``, None when rigid."""
+    shaft body) - the bodies at ``temperature``, None when rigid; ``roughness`` a
+    :class:`~vjax.Roughness` (mixed lubrication) or None (smooth surfaces)."""
     check_arguments(R, radial_clearance, viscosity, load, omega_shaft=omega_shaft, omega_housing=omega_housing,
                     load_angle=load_angle, memory=memory, cavitation=cavitation, supply_pressure=supply_pressure)
     checks.one_of("groove", groove, GROOVES)
@@ -251,6 +323,12 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     if sa is None:
         raise ValueError("supply_angle must be a concrete number (it selects a grid element)")
     housing, shaft = bodies_at(R, radial_clearance, housing, shaft, temperature, shift)
+    rigid = housing is None and shaft is None
+    if roughness is not None:
+        checks.instance("roughness", roughness, Roughness, "a vjax.Roughness (or None: smooth surfaces)")
+        if not rigid and options.linear_solver == "krylov":
+            raise ValueError("linear_solver='krylov': rough surfaces on a deformable body are solved with a dense "
+                             "LU (the asperity pressure an unknown per cell); use 'auto' or 'dense'")
     n = options.n
     dtype = jnp.result_type(float)
     floor = 4 * float(jnp.finfo(jnp.float64).eps) * (n / (2 * math.pi)) ** 2
@@ -258,7 +336,8 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     # The compiled solver's static key: options that do not change the program take their
     # defaults (a dense solve ignores krylov_modes, rigid bodies the continuation's strategy
     # and stages, the tolerance is cfg.tol), so calls differing only in those share it.
-    krylov, rigid, default = options.krylov, housing is None and shaft is None, type(options)()
+    # rough surfaces on a deformable body: dense ("auto" too), the asperity unknowns couple every cell
+    krylov, default = options.krylov and (rigid or roughness is None), type(options)()
     key = dataclasses.replace(options, tol=None, linear_solver="krylov" if krylov else "dense",
                               krylov_modes=options.krylov_modes if krylov else default.krylov_modes,
                               strategy=default.strategy if rigid else options.strategy,
@@ -267,13 +346,13 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
 
     groove_cell = int(round(float(sa) % (2 * math.pi) / (2 * math.pi / n))) % n
     pr = params(*_scene.canonical(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft,
-                                  supply_pressure), groove_cell, housing, shaft, n=n, memory=memory)
+                                  supply_pressure), groove_cell, housing, shaft, roughness, n=n, memory=memory)
     return pr, cfg, housing, shaft
 
 
 @partial(jax.jit, static_argnames=("n", "memory"))
 def params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omega_shaft, supply_pressure, groove,
-           housing, shaft, *, n, memory):
+           housing, shaft, roughness=None, *, n, memory):
     """Checked arguments -> :class:`Params` with a zero start, in one compiled program (built
     eagerly, its few dozen scalar and grid operations would each compile on a first call,
     together about as long as the solver itself)."""
@@ -291,11 +370,13 @@ def params(R, radial_clearance, viscosity, load, load_angle, omega_housing, omeg
                   op_B=None if housing is None else housing.operator(R, n, -omega_housing, memory),
                   op_J=None if shaft is None else shaft.operator(R - radial_clearance, n, omega=-omega_shaft,
                                                                  memory=memory),
-                  x0=jnp.zeros(n + 2, dtype))
+                  rough=roughness, x0=jnp.zeros(n + 2, dtype))
 
 
 @jax.jit
-def start(pressure, film_fraction, eccentricity, attitude_angle, p_ref):
+def start(pressure, film_fraction, eccentricity, attitude_angle, p_ref, asperity=None):
     """Unknowns from a solution: p / p_ref plus, in a "jfo" cavity, film fraction - 1 (the
-    universal variable), then eps and the attitude angle."""
-    return jnp.concatenate([pressure / p_ref + (film_fraction - 1.0), jnp.stack([eccentricity, attitude_angle])])
+    universal variable), then eps and the attitude angle, then (the unknowns of rough surfaces
+    on a deformable body, :func:`asperity_unknowns`) the ``asperity`` pressure / p_ref."""
+    x = jnp.concatenate([pressure / p_ref + (film_fraction - 1.0), jnp.stack([eccentricity, attitude_angle])])
+    return x if asperity is None else jnp.concatenate([x, asperity / p_ref])

@@ -1,5 +1,6 @@
 """The infinitely long journal bearing's result: force, torques (shear and viscoelastic),
-dissipation, film and eccentricity, from converged unknowns."""
+dissipation, film and eccentricity (with rough surfaces the asperities' share and boundary
+friction), from converged unknowns."""
 from __future__ import annotations
 
 import dataclasses
@@ -9,6 +10,7 @@ import jax.numpy as jnp
 
 from ...._core import scene as _scene
 from ....films import reynolds
+from ....films.roughness import friction_factor, shear_stress_factors
 from . import film
 
 
@@ -37,6 +39,18 @@ class JournalResult(_scene.SceneResult):
     ``dissipation_housing``, ``dissipation_shaft``; ``supply_flow`` Q_s (m^2/s, net outflow of
     the groove cell; can be negative: the Swift-Stieber cavity does not conserve mass);
     ``hersey`` H = eta v R_B/|F| (signed, as the thesis).
+
+    Mixed lubrication (``roughness=``; per unit length as everything here): ``force`` is that
+    of the film and the asperities together, ``asperity_force`` (N/m, on the housing, absolute)
+    the asperities' part, ``asperity_share`` its magnitude over the load, ``asperity_pressure``
+    (Pa, on the grid) their Greenwood-Tripp pressure; the shear torques carry Patir and Cheng's
+    shear stress factors and the asperities' friction mu_b p_a. Friction (N/m, resisting the
+    surfaces' sliding, positive): the shear on the journal over the film's arc R dtheta (its
+    torque over R_J), ``friction_viscous`` from the film's shear and ``friction_boundary`` from
+    mu_b p_a; ``friction_coefficient`` their sum over the load; ``film_parameter`` lambda =
+    min_film / sigma (inf for smooth surfaces); ``dissipation_fluid`` the film's with the
+    factors, ``dissipation_boundary`` the asperities' friction times the sliding speed (W/m; 0
+    for smooth surfaces).
 
     Convergence: ``iterations`` (Newton steps on this grid, summed over stages; a nested
     coarse-grid start is not counted), ``stages`` (continuation stages, 0 = direct),
@@ -67,6 +81,14 @@ class JournalResult(_scene.SceneResult):
     dissipation_shaft: jax.Array
     supply_flow: jax.Array
     hersey: jax.Array
+    asperity_pressure: jax.Array
+    asperity_force: jax.Array
+    asperity_share: jax.Array
+    friction_viscous: jax.Array
+    friction_boundary: jax.Array
+    friction_coefficient: jax.Array
+    film_parameter: jax.Array
+    dissipation_boundary: jax.Array
     iterations: jax.Array
     stages: jax.Array
     residual: jax.Array
@@ -74,7 +96,7 @@ class JournalResult(_scene.SceneResult):
 
 
 def outputs(x, pr: film.Params, cfg: film.Config, stats, stages):
-    n = x.shape[0] - 2
+    n = cfg.options.n
     f = film.fields(x, pr, cfg)
     p, h, hf, dpds, th, dth = f["p"], f["h"], f["hf"], f["dpds"], f["theta"], f["dth"]
     R, RJ, eta, c = pr.R, pr.RJ, pr.eta, pr.c
@@ -83,20 +105,42 @@ def outputs(x, pr: film.Params, cfg: film.Config, stats, stages):
     dU = pr.omega_B * R - pr.omega_J * RJ
     # a striated ("jfo") cavity shears only its liquid: the upwind fraction of each face
     liquid = reynolds.face_fraction(f["fraction"], pr.v)
-    tauB = -0.5 * hf * dpds - liquid * eta * dU / hf
-    tauJ = -0.5 * hf * dpds + liquid * eta * dU / hf
+    rough, p_a = pr.rough, f["p_asp"]
+    if rough is None:
+        tauB = -0.5 * hf * dpds - liquid * eta * dU / hf
+        tauJ = -0.5 * hf * dpds + liquid * eta * dU / hf
+        couette_gap = hf
+    else:
+        # Patir and Cheng (1979): the mean shear on each surface, the factors at H_c; the shear
+        # stress factor Phi_fs enters the journal's with -Vr, the bore's with +Vr
+        Hc, hc = rough.clipped(hf)
+        fs, fp = shear_stress_factors(Hc, rough.gamma)
+        ff = friction_factor(Hc)
+        tauB = -0.5 * fp * hc * dpds - liquid * eta * dU / hc * (ff + rough.Vr * fs)
+        tauJ = -0.5 * fp * hc * dpds + liquid * eta * dU / hc * (ff - rough.Vr * fs)
+        couette_gap = hc / ff      # the Couette shear's mean factor phi_f (the two surfaces' Phi_fs cancel)
+    # the asperities' friction mu_b p_a opposes the sliding on both surfaces (per unit length)
+    sliding = film.sliding(pr)
+    boundary = -jnp.sign(sliding) * (0.0 if rough is None else rough.mu_b) * R * dth * jnp.sum(p_a)
     central = lambda u: 0.5 * (jnp.roll(u, -1) - jnp.roll(u, 1))
     CvB = -R * jnp.sum(pres * central(f["uB"]))
     CvJ = -R * jnp.sum(pres * central(f["uJ"]))
-    CB = R * R * dth * jnp.sum(tauB) + CvB
-    CJ = RJ * R * dth * jnp.sum(tauJ) + CvJ
+    CJ_visc = RJ * R * dth * jnp.sum(tauJ)
+    CB = R * R * dth * jnp.sum(tauB) - R * boundary + CvB
+    CJ = CJ_visc + RJ * boundary + CvJ
     # pressure force on the journal in the line-of-centres frame (th: angles from it); the
     # housing gets minus it
     off = film.offset(x, cfg)
     th = th - off
-    Fx = -R * dth * jnp.sum(pres * jnp.cos(th))
-    Fy = -R * dth * jnp.sum(pres * jnp.sin(th))
-    Df = R * dth * jnp.sum(hf**3 * dpds**2 / (12 * eta) + liquid * eta * dU**2 / hf)
+    Fx = -R * dth * jnp.sum((pres + p_a) * jnp.cos(th))
+    Fy = -R * dth * jnp.sum((pres + p_a) * jnp.sin(th))
+    Fa = -R * dth * jnp.stack([jnp.sum(p_a * jnp.cos(th)), jnp.sum(p_a * jnp.sin(th))])
+    Df = R * dth * jnp.sum(reynolds.conductance_gap(hf, rough) * dpds**2 / (12 * eta)
+                           + liquid * eta * dU**2 / couette_gap)
+    # friction on the journal's surface resisting its sliding (N/m): its shear over the film's
+    # arc R dtheta, the torque's parts over R_J
+    resisting = -jnp.sign(sliding) / RJ
+    friction_viscous, friction_boundary = resisting * CJ_visc, resisting * RJ * boundary
     g = pr.groove
     gamma = pr.load_angle + phi
     rot = jnp.array([[jnp.cos(gamma), -jnp.sin(gamma)], [jnp.sin(gamma), jnp.cos(gamma)]])
@@ -113,4 +157,9 @@ def outputs(x, pr: film.Params, cfg: film.Config, stats, stages):
                                              else cfg.cavitation),
         dissipation_fluid=Df, dissipation_housing=-pr.omega_B * CvB, dissipation_shaft=-pr.omega_J * CvJ,
         supply_flow=f["q"][g] - f["q"][(g - 1) % n], hersey=eta * pr.v * R / pr.W,
+        asperity_pressure=p_a, asperity_force=-rot @ Fa, asperity_share=jnp.hypot(Fa[0], Fa[1]) / pr.W,
+        friction_viscous=friction_viscous, friction_boundary=friction_boundary,
+        friction_coefficient=(friction_viscous + friction_boundary) / pr.W,
+        film_parameter=jnp.full((), jnp.inf, h.dtype) if rough is None else jnp.min(h) / rough.sigma,
+        dissipation_boundary=jnp.abs(boundary * dU),
         iterations=stats.iterations, stages=stages, residual=stats.residual, result=stats.result)

@@ -28,21 +28,22 @@ def _staged(pr: film.Params, t):
 
     t in [0, 1]: compliance ramped in (factor t) at M times the entrainment speed, with M
     such that the rigid bearing runs at eps ~ 0.6 (thick film, mild coupling);
-    t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target.
+    t in [1, 2]: full compliance, speed M^(2 - t) (geometric) down to the target (the
+    surfaces' speeds with it, which set a rough film's shear flow).
     """
     M = jnp.maximum(1.0, film.load_number(pr) / reference.half_sommerfeld_load(0.6))
     m = M ** jnp.clip(2.0 - t, 0.0, 1.0)
     s = jnp.clip(t, 0.0, 1.0)
     scale = lambda op: None if op is None else RingOperator(op.symbol * s, op.n)
-    return dataclasses.replace(pr, v=pr.v * m, q_ref=pr.q_ref * m, op_B=scale(pr.op_B), op_J=scale(pr.op_J)), m
+    return dataclasses.replace(pr, v=pr.v * m, q_ref=pr.q_ref * m, omega_B=pr.omega_B * m, omega_J=pr.omega_J * m,
+                               op_B=scale(pr.op_B), op_J=scale(pr.op_J)), m
 
 
 def _continuation(pr, cfg, x0=None, subcell=True):
     """Adaptive continuation in t (see :func:`_staged`, :func:`vjax._core.solve.continuation`): at most
     ``stages`` Newton solves; with ``x0`` (``strategy="auto"``) a direct solve from it first;
     ``subcell`` as :func:`_solve_steady`."""
-    n = pr.x0.shape[0] - 2
-    guess = film.guess(_staged(pr, 0.0)[0], n, cfg)
+    guess = film.guess(_staged(pr, 0.0)[0], cfg.options.n, cfg)
     # the intermediate stages are only starts: their rupture on a face will do
     solve = lambda x, t: film.newton(x, _staged(pr, t)[0], cfg, subcell=subcell & (t >= 2.0))     # noqa: E731
     return _solve.continuation(solve, guess, x0, cfg.options.stages)
@@ -51,11 +52,12 @@ def _continuation(pr, cfg, x0=None, subcell=True):
 def _jfo_start(x, pr: film.Params, cfg: film.Config):
     """JFO unknowns from a Reynolds solution x: its pressure where positive; in the cavity the
     film fraction that carries the flow leaving the pressurized film (the flux at the
-    pressure peak) as a Couette flow, f = Q / (v h), as the universal variable f - 1."""
-    n = x.shape[0] - 2
+    pressure peak) as a Couette flow, f = Q / (v h) (rough surfaces: Q over their Couette flux),
+    as the universal variable f - 1."""
+    n = cfg.options.n
     f = film.fields(x, pr, dataclasses.replace(cfg, cavitation="reynolds"))
     flow = f["q"][jnp.argmax(f["p"])]
-    fraction = jnp.clip(flow / (pr.v * f["h"]), 0.0, 1.0)
+    fraction = jnp.clip(flow / reynolds.couette_flux(f["h"], pr.v, pr.rough, film.sliding(pr)), 0.0, 1.0)
     cavity = f["p"] <= 1e-9 * jnp.max(f["p"])
     return x.at[:n].set(jnp.where(cavity, fraction - 1.0, x[:n]))
 
@@ -65,7 +67,7 @@ def _solver(pr: film.Params, cfg: film.Config):
     film re-forms only at the groove), whose cavity it fills with the mass-conserving film."""
     if cfg.cavitation != "jfo":
         return _solve_steady(pr, cfg)
-    n = pr.x0.shape[0] - 2
+    n = cfg.options.n
     start = dataclasses.replace(pr, x0=pr.x0.at[:n].max(0.0))
     xr, (st_r, stages) = _solve_steady(start, dataclasses.replace(cfg, cavitation="reynolds"), subcell=False)
     x0 = _jfo_start(xr, pr, cfg)
@@ -80,11 +82,12 @@ def _solver(pr: film.Params, cfg: film.Config):
 
 
 def _solve_steady(pr: film.Params, cfg: film.Config, subcell=True):
-    """Steady solution: Newton, or continuation (compliant bodies); ``subcell`` False leaves a
-    Reynolds rupture on a cell face (a start for JFO, :func:`vjax.scenes.journal.long.film.newton`)."""
+    """Steady solution: Newton, or continuation (compliant bodies, rough surfaces: a mixed film
+    far from the estimate's); ``subcell`` False leaves a Reynolds rupture on a cell face (a start
+    for JFO, :func:`vjax.scenes.journal.long.film.newton`)."""
     compliant = pr.op_B is not None or pr.op_J is not None
     x0 = jax.lax.stop_gradient(pr.x0)
-    strategy = cfg.options.strategy if compliant else "newton"
+    strategy = cfg.options.strategy if compliant or pr.rough is not None else "newton"
     if strategy == "newton":
         x, stats = film.newton(x0, pr, cfg, subcell=subcell)
         stages = jnp.asarray(0)
@@ -115,9 +118,10 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
                          supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
                          shift=None, initial: JournalResult | None = None,
                          options: JournalOptions = JournalOptions(), throw: bool = True,
-                         nested: bool = True) -> JournalResult:
+                         nested: bool = True, roughness=None) -> JournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing: :func:`vjax.journal_bearing`
     without ``length`` (its arguments; :mod:`vjax.scenes.journal.long` for the equations).
+    ``roughness``: a :class:`~vjax.Roughness` for mixed lubrication, None for smooth surfaces.
     ``nested``: whether a cold start on a fine grid may begin on the 4x coarser one (one level:
     the coarse solve itself starts cold, so that one more program is compiled, not one per level)."""
     groove = "line_of_centres" if groove is None else groove
@@ -126,13 +130,15 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
         R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
         omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
         supply_angle=supply_angle, supply_pressure=supply_pressure, temperature=temperature, shift=shift,
-        options=options, groove=groove)
+        options=options, groove=groove, roughness=roughness)
     n, p_ref, dtype = options.n, pr.p_ref, pr.x0.dtype
+    implicit = film.asperity_unknowns(pr, cfg) > 0
     if initial is not None:
         if not isinstance(initial, JournalResult) or any(a.shape != (n,) for a in (initial.pressure,
                                                                                    initial.film_fraction)):
             raise ValueError(f"initial must be a JournalResult of the same bearing (n = {n})")
-        x0 = film.start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref)
+        x0 = film.start(initial.pressure, initial.film_fraction, initial.eccentricity, initial.attitude_angle, p_ref,
+                        initial.asperity_pressure if implicit else None)
     elif nested and options.strategy == "auto" and n % 4 == 0 and n >= (
             NESTED_MIN_N if housing is not None or shaft is not None else NESTED_MIN_N_RIGID):
         # Nested start: solve on a 4x coarser grid, interpolate. Most Newton steps from a
@@ -142,14 +148,15 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
             R, radial_clearance, viscosity, load, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
             omega_housing=omega_housing, load_angle=load_angle, memory=memory, cavitation=cavitation,
             supply_angle=supply_angle, supply_pressure=supply_pressure, groove=groove,
-            options=dataclasses.replace(options, n=n // 4), throw=False, nested=False)
-        x0 = film.start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref)
+            options=dataclasses.replace(options, n=n // 4), throw=False, nested=False, roughness=roughness)
+        x0 = film.start(_refine_periodic(coarse.pressure, n), 1.0, coarse.eccentricity, coarse.attitude_angle, p_ref,
+                        _refine_periodic(coarse.asperity_pressure, n) if implicit else None)
     else:
         x0 = film.guess(pr, n, cfg)
     sol = _run(dataclasses.replace(pr, x0=jax.lax.stop_gradient(x0).astype(dtype)), cfg)
     # the hint only for a failure it can explain (concrete values; its eager operations
     # would otherwise compile on every first call)
-    failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
+    failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS and roughness is None
     _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
     return sol
 
