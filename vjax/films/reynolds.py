@@ -27,6 +27,10 @@ A cell's net outflow w = q_out - q_in is its mass balance. Cavitation (``cavitat
   when it loads the surfaces.
 - ``"sommerfeld"``: full Sommerfeld (w = 0 everywhere), negative pressures kept.
 
+Rough surfaces (``rough=``, a :class:`~vjax.films.roughness.Roughness`): Patir and Cheng's
+average flow, q = -phi_x(H_c) h_c^3/(12 eta) dp/ds + v h_T + (U_J - U_B)/2 Vr sigma Phi_s(H_c)
+at the face film (:func:`couette_flux`, :func:`conductance_gap`; docs/theory.md §18).
+
 The Reynolds model lets the cavity carry a full-film Couette flow, i.e. it does not conserve
 mass across the cavity; where the film re-forms only from the groove (a groove at the
 widest gap), JFO and Reynolds give the same pressure, elsewhere (a groove fixed in the
@@ -166,9 +170,9 @@ def rupture_outflow(p_scaled, couette_outflow, v, axis=0):
 
 
 def cell_equations(p_scaled, q, q_ref, cavitation, squeeze=0.0, couette=None, v=0.0, subcell=1.0):
-    """Mass balance of each cell, scaled to O(1) per unit angle; complementarity with the
-    (scaled) pressure under Reynolds conditions. ``squeeze``: R dh/dt at the cell centres
-    (m^2/s per radian), the film's own growth, which the net outflow must supply (the
+    """Mass balance of each cell, scaled to O(1) per unit angle by ``q_ref`` (m^2/s, a number or
+    one per cell); complementarity with the (scaled) pressure under Reynolds conditions.
+    ``squeeze``: R dh/dt at the cell centres (m^2/s per radian), the film's own growth, which the net outflow must supply (the
     unsteady term of d/ds(h^3/(12 eta) dp/ds) = v dh/ds + dh/dt). ``couette``: the faces'
     Couette fluxes (m^2/s) at entrainment speed ``v``; under Reynolds conditions the rupture
     is then located within its cell (:func:`rupture_outflow`), times ``subcell`` (0: on a

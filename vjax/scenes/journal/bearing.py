@@ -69,7 +69,11 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
       roughness: a :class:`~vjax.Roughness` (the surfaces' rms roughness, asperities, composite
         modulus and boundary friction): mixed lubrication, Patir and Cheng's average flow with
         Greenwood and Tripp's asperity contact, from full film down to a journal that barely
-        turns (finite bearing, rigid bodies; docs/theory.md). None: smooth surfaces.
+        turns, in the finite and the infinitely long bearing (per unit length), rigid bodies or
+        deformable ones loaded by film and asperities together; the result's ``asperity_share``,
+        ``asperity_pressure``, ``friction_viscous``, ``friction_boundary``,
+        ``friction_coefficient`` and ``film_parameter`` (docs/theory.md §18). None: smooth
+        surfaces.
 
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> sol = journal_bearing(0.05, 5e-5, 0.01, 2e4, omega_shaft=100.0, options=JournalOptions(n=64))

@@ -32,7 +32,8 @@ class StribeckCurve:
     ``friction_viscous`` and ``friction_boundary`` (N; N/m for the infinitely long bearing),
     ``asperity_share``, ``eccentricity``, ``film_parameter`` lambda = h_min / sigma, ``converged``
     and ``result`` (the solver's code, 0 = converged) per point; ``results`` the scene's
-    :class:`~vjax.FiniteJournalResult` (:class:`~vjax.JournalResult`) of each point. ``lift_off_speed``: where the asperity
+    :class:`~vjax.FiniteJournalResult` (:class:`~vjax.JournalResult`) of each point.
+    ``lift_off_speed``: where the asperity
     share falls to 1 % (log-linear interpolation between converged points; None if the sweep
     does not cross it); ``minimum_speed``: the Stribeck minimum, the speed of least friction
     (a parabola in log speed through the least converged point and its neighbours; None if the

@@ -80,10 +80,19 @@ for a pattern moving at Omega relative to it):
   the groove's) the pressure energy of the flow let out within the rupture's cell, the only
   pressurized cell with a net outflow (:func:`vjax.films.reynolds.rupture_outflow`; ~1e-8 of the power).
 
+Mixed lubrication (``roughness=``)
+----------------------------------
+Rough surfaces (a :class:`~vjax.Roughness`): Patir and Cheng's average flow in the fluxes
+(:mod:`vjax.films.reynolds`), Greenwood and Tripp's asperity pressure p_a(h) at every cell,
+which joins the film's pressure in the force balance and in the load on deformable bodies (then
+p_a / p_ref is an unknown per cell, p_a - p_a(h) = 0, solved with the rest by a dense LU), the
+film's shear with Patir and Cheng's shear stress factors and the asperities' friction mu_b p_a.
+Per unit length as everything here; docs/theory.md §18.2. Not with ``cavitation="jfo"``.
+
 Solver
 ------
-Unknowns p/p_ref (n values), eps, attitude: n + 2 equations (cell balances / FB, groove
-datum, two force components). The core's damped Newton (:func:`vjax._core.solve.newton`; steps
+Unknowns p/p_ref (n values), eps, attitude (and the asperity pressures, see above): n + 2
+equations (cell balances / FB, groove datum, two force components; and p_a - p_a(h) per cell). The core's damped Newton (:func:`vjax._core.solve.newton`; steps
 giving h <= 0 are rejected), each step solved (``options.linear_solver``) with the exact
 dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products,
 O(n log n)) preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on

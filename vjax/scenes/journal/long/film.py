@@ -188,8 +188,8 @@ def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None, subce
     Reynolds rupture within its cell, 0 on a face (:func:`newton`'s first stage)."""
     n = cfg.options.n
     f = fields(x, pr, cfg, smoothing, deformation)
-    r = reynolds.cell_equations(x[:n], f["q"], pr.q_ref, cfg.cavitation, couette=f["couette"], v=pr.v,
-                                subcell=subcell)
+    r = reynolds.cell_equations(x[:n], f["q"], balance_scale(f, pr), cfg.cavitation, couette=f["couette"],
+                                v=pr.v, subcell=subcell)
     r = r.at[pr.groove].set(x[pr.groove] - pr.ps / pr.p_ref)
     carried = f["p_load"] + f["p_asp"]
     Fx = -pr.R * f["dth"] * jnp.sum(carried * jnp.cos(f["theta"]))
@@ -201,6 +201,19 @@ def equations(x, pr: Params, cfg: Config, smoothing=0.0, deformation=None, subce
     if f["asperity_residual"] is not None:
         r = jnp.concatenate([r, f["asperity_residual"]])
     return r, margin(f["h"], pr)
+
+
+def balance_scale(f, pr: Params):
+    """The flow (m^2/s) the cell balances are scaled by: q_ref for smooth surfaces; for rough ones
+    each cell's own, p_ref times the conductance of its two faces over a cell (per radian), as
+    the finite film's. Where the asperities touch, the local conductance phi_x h_c^3 is ~(sigma /
+    c)^3 of the clearance's: scaled by q_ref, those cells' balances would be ~1e-6 of their
+    pressures in the Fischer-Burmeister pair, and Newton crawls there."""
+    if pr.rough is None:
+        return pr.q_ref
+    k = reynolds.conductance_gap(f["hf"], pr.rough) / (12 * pr.eta)
+    dth = f["dth"]
+    return pr.p_ref * (k + jnp.roll(k, 1)) / (pr.R * dth * dth)
 
 
 def margin(h, pr: Params):
@@ -326,6 +339,10 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     rigid = housing is None and shaft is None
     if roughness is not None:
         checks.instance("roughness", roughness, Roughness, "a vjax.Roughness (or None: smooth surfaces)")
+        if cavitation == "jfo":
+            raise ValueError("cavitation='jfo': the infinitely long bearing's mixed film (roughness=) is solved with "
+                             "'reynolds', 'half_sommerfeld' or 'sommerfeld' conditions; its mass-conserving cavity "
+                             "does not converge where the asperities carry the load")
         if not rigid and options.linear_solver == "krylov":
             raise ValueError("linear_solver='krylov': rough surfaces on a deformable body are solved with a dense "
                              "LU (the asperity pressure an unknown per cell); use 'auto' or 'dense'")
