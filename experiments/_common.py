@@ -35,34 +35,48 @@ __all__ = ["Check", "StageReport", "enable_x64", "setup", "atomic_write_text", "
 
 
 CLASSIC_FUSION_EMITTERS = "--xla_cpu_use_fusion_emitters=false"
+OPTIMIZATION_LEVEL_0 = "--xla_backend_optimization_level=0"
 
 
-def classic_fusion_emitters_accepted() -> bool:
-    """Whether a JAX process starts and computes with XLA:CPU's classic fusion emitters
-    (:data:`CLASSIC_FUSION_EMITTERS` added to XLA_FLAGS): one subprocess, about a second. An
-    XLA flag the installed jaxlib does not know aborts the process, so it is probed first.
-
-    Why: vjax's solver programs (the journal bearings' Newton loops above all) compile about
-    1.4x faster with the classic emitters than with the newer MLIR ones, to the same results
-    up to round-off; the roller's compile a little slower. The test suite and the main job,
-    which are mostly XLA compiling, use them; vjax itself never sets XLA flags."""
+def xla_flags_accepted(flags=(CLASSIC_FUSION_EMITTERS,)) -> bool:
+    """Whether a JAX process starts and computes with ``flags`` added to XLA_FLAGS: one
+    subprocess, about a second. An XLA flag the installed jaxlib does not know aborts the
+    process, so it is probed first."""
     import os
     import subprocess
     import sys
-    env = dict(os.environ, XLA_FLAGS=f"{os.environ.get('XLA_FLAGS', '')} {CLASSIC_FUSION_EMITTERS}".strip())
+    env = dict(os.environ, XLA_FLAGS=" ".join([os.environ.get("XLA_FLAGS", ""), *flags]).strip())
     probe = subprocess.run([sys.executable, "-c", "import jax.numpy as jnp; jnp.zeros(2).block_until_ready()"],
                            env=env, capture_output=True, timeout=300)
     return probe.returncode == 0
 
 
-def use_classic_fusion_emitters() -> None:
-    """Add :data:`CLASSIC_FUSION_EMITTERS` to XLA_FLAGS in this process's environment (inherited
-    by the processes it starts; effective for this one only before JAX's backend starts),
-    unless XLA_FLAGS already chooses the emitters."""
+def classic_fusion_emitters_accepted() -> bool:
+    """Whether a JAX process starts and computes with XLA:CPU's classic fusion emitters
+    (:data:`CLASSIC_FUSION_EMITTERS` added to XLA_FLAGS; :func:`xla_flags_accepted`).
+
+    Why: vjax's solver programs (the journal bearings' Newton loops above all) compile about
+    1.4x faster with the classic emitters than with the newer MLIR ones, to the same results
+    up to round-off; the roller's compile a little slower. The test suite and the main job,
+    which are mostly XLA compiling, use them; vjax itself never sets XLA flags."""
+    return xla_flags_accepted((CLASSIC_FUSION_EMITTERS,))
+
+
+def add_xla_flags(flags) -> None:
+    """Add each of ``flags`` ("--name=value") to XLA_FLAGS in this process's environment
+    (inherited by the processes it starts; effective for this one only before JAX's backend
+    starts), unless XLA_FLAGS already sets that name."""
     import os
-    flags = os.environ.get("XLA_FLAGS", "")
-    if "xla_cpu_use_fusion_emitters" not in flags:
-        os.environ["XLA_FLAGS"] = f"{flags} {CLASSIC_FUSION_EMITTERS}".strip()
+    for flag in flags:
+        current = os.environ.get("XLA_FLAGS", "")
+        if flag.split("=")[0] not in current:
+            os.environ["XLA_FLAGS"] = f"{current} {flag}".strip()
+
+
+def use_classic_fusion_emitters() -> None:
+    """Add :data:`CLASSIC_FUSION_EMITTERS` to XLA_FLAGS (:func:`add_xla_flags`), unless
+    XLA_FLAGS already chooses the emitters."""
+    add_xla_flags((CLASSIC_FUSION_EMITTERS,))
 
 
 def enable_x64() -> None:

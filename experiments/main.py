@@ -67,11 +67,12 @@ STAGES = [
     ("thermal", "experiments.figures.thermal_figures", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (CPU seconds of each stage
-# alone, empty cache, default XLA emitters, calibration total 5.5 s: journal 61, bodies 38 with
-# its own calibration, dynamics 37, roller 36, pin 23, bores 15), so that the last to finish
-# are short ones; calibration first, bodies waits for it. A stage of STAGES not named here
-# starts right after calibration (its cost unknown: early, so that it does not finish last).
-ORDER = ("calibration", "journal", "roller", "bodies", "dynamics", "pin", "bores", "thermal", "foundation")
+# alone, empty cache, its STAGE_XLA_FLAGS, a shared machine: roller 38, stribeck 39, journal 38,
+# bodies 37 without its own calibration, thermal 19, dynamics 16, pin 14, bores 11), so that the
+# last to finish are short ones; calibration first, bodies waits for it. A stage of STAGES not
+# named here starts right after calibration (its cost unknown: early, so that it does not finish last).
+ORDER = ("calibration", "roller", "stribeck", "journal", "bodies", "thermal", "dynamics", "pin", "bores",
+         "foundation")
 PRIORITY = ([s for s in STAGES if s[0] == ORDER[0]] + [s for s in STAGES if s[0] not in ORDER]
             + [s for name in ORDER[1:] for s in STAGES if s[0] == name])
 DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material.json
@@ -164,18 +165,27 @@ class _Prefixed(io.TextIOBase):
         return len(text)
 
 
-# Stages compiled with XLA:CPU's classic fusion emitters (_common.classic_fusion_emitters_accepted):
-# about 1.4x faster to compile the journal bearings' and the pin's programs, the same results
-# to round-off. Not the roller, whose programs compile slower with them (its stage: 89 -> 114 s).
-CLASSIC_EMITTER_STAGES = ("calibration", "foundation", "pin", "journal", "bodies", "dynamics", "bores")
+# XLA flags of each stage's worker process (the main job's only: vjax sets none). Measured per
+# stage, alone, from an empty cache (CPU seconds; docs/benchmarks.md, "Main job (issue 42)"):
+# - XLA:CPU's classic fusion emitters compile the journal bearings' and the pin's programs
+#   about 1.4x faster than the MLIR ones, to the same results up to round-off; not the roller's
+#   (its stage: 89 -> 114 s with them);
+# - optimization level 0 compiles 2-4x faster and runs slower: kept where the stage is mostly
+#   compiling and its outputs agree with the default level's to round-off (largest difference
+#   1e-11 of a column's largest value, every check the same), not where the runs cost more than
+#   the compiles save (roller 49 -> 128 CPU-s, bodies 42 -> 43, bores 12 -> 15).
+CLASSIC, O0 = _common.CLASSIC_FUSION_EMITTERS, _common.OPTIMIZATION_LEVEL_0
+STAGE_XLA_FLAGS = {"calibration": (CLASSIC,), "foundation": (CLASSIC,), "pin": (CLASSIC, O0), "roller": (),
+                   "journal": (CLASSIC, O0), "bodies": (CLASSIC,), "dynamics": (CLASSIC, O0), "bores": (CLASSIC,),
+                   "stribeck": (CLASSIC, O0), "thermal": (CLASSIC, O0)}
 
 
-def _run_stage(name, out, quick, cache, prefix=True, classic_emitters=False):
+def _run_stage(name, out, quick, cache, prefix=True, xla_flags=False):
     """Run one stage (in a worker process, or in this one); returns (report, seconds).
-    ``classic_emitters``: the stage runs in a fresh process whose JAX backend has not started;
-    set XLA:CPU's classic fusion emitters for it if it is one of CLASSIC_EMITTER_STAGES."""
-    if classic_emitters and name in CLASSIC_EMITTER_STAGES:
-        _common.use_classic_fusion_emitters()
+    ``xla_flags``: the stage runs in a fresh process whose JAX backend has not started; set its
+    STAGE_XLA_FLAGS (those XLA_FLAGS does not set already)."""
+    if xla_flags:
+        _common.add_xla_flags(STAGE_XLA_FLAGS.get(name, ()))
     _common.enable_x64()
     if cache:
         from fitting import jax_cache
@@ -206,8 +216,9 @@ def _run_stages(names, out, quick, jobs, cache):
         return reports, times
     pending, running = list(names), {}
     ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
-    # a fresh process per stage (Python >= 3.11), so that each chooses its XLA emitters
-    fresh = sys.version_info >= (3, 11) and _common.classic_fusion_emitters_accepted()
+    # a fresh process per stage (Python >= 3.11), so that each sets its own XLA flags
+    flags = sorted({f for v in STAGE_XLA_FLAGS.values() for f in v})
+    fresh = sys.version_info >= (3, 11) and _common.xla_flags_accepted(flags)
     with concurrent.futures.ProcessPoolExecutor(jobs, mp_context=ctx,
                                                 **({"max_tasks_per_child": 1} if fresh else {})) as pool:
         while pending or running:
@@ -215,7 +226,7 @@ def _run_stages(names, out, quick, jobs, cache):
             for name in ready[:jobs - len(running)]:
                 pending.remove(name)
                 print(f"=== {name} (started) ===", flush=True)
-                running[pool.submit(_run_stage, name, out, quick, cache, classic_emitters=fresh)] = name
+                running[pool.submit(_run_stage, name, out, quick, cache, xla_flags=fresh)] = name
             done, _ = concurrent.futures.wait(running, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
                 name = running.pop(future)

@@ -431,7 +431,7 @@ def finite_length(out, grid):
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
-    n = 64 if quick else 512
+    n = 64 if quick else 256
     speeds = list(-np.geomspace(0.4, 10.0, 4 if quick else 20))
     lines = [f"Journal bearing, thesis Chapter 3 (n = {n}, reference length 1 m unless stated)", ""]
     elastic, hs = starts(n)

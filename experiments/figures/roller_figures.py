@@ -235,7 +235,7 @@ NEEDLE_LENGTH = 7.8e-3
 
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
-    n = 512 if quick else 2048
+    n = 512 if quick else 1024
     nw = 20 if quick else 60
     w = np.logspace(-4, 4, nw)
     lines = [f"roller_figures: thesis case, n = {n} elements per ring, {nw} speeds omega~ = 1e-4..1e4"]

@@ -41,17 +41,24 @@ LINER = vjax.liner(vjax.Material.sls(1.5e9, 3e9, 0.01, 0.4), 2e-3)
 BEARING = dict(length=L, supply_angle=None, options=vjax.FiniteJournalOptions(n=32, m=16))
 
 
-def smooth_curve(speeds):
+def smooth_curve(speeds, rough):
     """Today's smooth full film, warm-started down from the highest speed: (friction
-    coefficient, converged) per speed (NaN where it fails: its film would close)."""
+    coefficient, converged) per speed (NaN where it fails: its film would close, and below).
+    ``rough``: the rough rigid sweep (a :class:`vjax.StribeckCurve` on the same speeds and
+    grid), whose point at each speed starts the smooth one where the last smooth point does
+    not (at the top speed, and after a failure): the smooth film is then one compiled program
+    (Newton from a given start), not two (a cold start from the rigid estimate is another)."""
     mu, ok, last = np.full(speeds.size, np.nan), np.zeros(speeds.size, bool), None
     for i in range(speeds.size - 1, -1, -1):
-        r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=float(speeds[i]), initial=last, throw=False, **BEARING)
-        if not r.converged and last is not None:      # a long step down: from the rigid estimate instead
-            r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=float(speeds[i]), throw=False, **BEARING)
-        ok[i] = bool(r.converged)
-        if ok[i]:
-            mu[i], last = float(r.friction_coefficient), r
+        r = None
+        for start in ([last] if last is not None else []) + [rough.results[i]]:
+            r = vjax.journal_bearing(R, C, ETA, W, omega_shaft=float(speeds[i]), initial=start, throw=False,
+                                     **BEARING)
+            if bool(r.converged):
+                break
+        if not bool(r.converged):      # the film closes here: at lower speeds too
+            break
+        ok[i], mu[i], last = True, float(r.friction_coefficient), r
     return mu, ok
 
 
@@ -69,7 +76,7 @@ def main(out_dir="experiments/out", quick=False):
     speeds = np.logspace(-3, 2, 7 if quick else 13)
     rigid = vjax.stribeck_curve(R, C, ETA, W, speeds, roughness=ROUGH, **BEARING)
     lined = vjax.stribeck_curve(R, C, ETA, W, speeds, roughness=ROUGH, housing=LINER, **BEARING)
-    smooth, smooth_ok = smooth_curve(speeds)
+    smooth, smooth_ok = smooth_curve(speeds, rigid)
     hersey = rigid.hersey
     rows = [(speeds[k], hersey[k], rigid.friction_coefficient[k], rigid.asperity_share[k], rigid.eccentricity[k],
              lined.friction_coefficient[k], lined.asperity_share[k], lined.eccentricity[k], smooth[k])

@@ -29,7 +29,10 @@ import vjax  # noqa: E402
 R, C, L, RPM, P_SPEC = 0.050075, 75e-6, 0.1, 3000.0, 1e6
 OIL = vjax.Lubricant.iso_vg(32)
 OPTIONS = vjax.FiniteJournalOptions(n=64, m=16)
-HEATS = (("adiabatic bush", vjax.FilmHeat(T_supply=40.0)),
+# the adiabatic bush as a bush of zero heat-transfer coefficient to the same housing temperature:
+# the same pytree as the liner's (FilmHeat(T_supply=40.0) alone has T_housing None), so that both
+# bushes run one set of compiled programs, not two
+HEATS = (("adiabatic bush", vjax.FilmHeat(T_supply=40.0, bush=0.0, T_housing=40.0)),
          ("5 mm liner to a 40 C housing", vjax.FilmHeat.liner(0.25, 5e-3, T_housing=40.0, T_supply=40.0)))
 
 
