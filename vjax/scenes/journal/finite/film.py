@@ -283,12 +283,26 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     which couples every node of a slice, D the loading pressure's slope): with ``cfg.krylov``
     the system is solved by GMRES, its products matrix-free (one FFT per product, O(N log N)),
     preconditioned as above with K kept on each node's own entry of the film's Jacobian
-    (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part)."""
+    (:func:`own_compliance`: a thin layer's compliance is mostly that local, Winkler-like part).
+    Rough surfaces on a deformable body add the asperity pressures, one unknown per node
+    (:func:`asperity_unknowns`): GMRES over all unknowns, preconditioned by
+    :func:`_asperity_preconditioner`."""
     n = cfg.n
     N = unknowns(cfg)
     full = lambda y: equations(y, pr, cfg, relaxed, subcell)[0]     # noqa: E731
     _, matvec = jax.linearize(full, x)
     unit = jnp.eye(2, N + 2, N, dtype=x.dtype)          # the rows of e/c in the identity
+    gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
+
+    def solve_transposed(precondition):      # J^T's products traced only where its solve is called
+        def solve(b):
+            _, vjp = jax.vjp(full, x)
+            return gmres(lambda v: vjp(v)[0], precondition(), b)
+        return solve
+
+    if asperity_unknowns(pr, cfg):
+        precondition = _asperity_preconditioner(x, pr, cfg, relaxed, subcell)
+        return (lambda b: gmres(matvec, precondition(), b)), solve_transposed(lambda: precondition(True))
     if is_rigid(pr):
         # the cells' stencil and the two columns d/d(e/c) from one batch of products with the
         # linearized equations: one copy of their linearization in the compiled program
@@ -298,11 +312,10 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
         cols = products[-2:].T                          # (N + 2, 2): d/d(e/c)
     else:
         rest = lambda pz: jnp.concatenate([pz, x[N:]])     # noqa: E731
-        f0 = fields(x, pr, cfg, relaxed=relaxed)
-        U0, load0, own = f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg)
+        U0, load0, own = _held(x, pr, cfg, relaxed)
 
         def cells(pz):
-            U = U0 + own.real * (loading(interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
+            U = U0 + own * (loading(interior(pz, cfg), pr, cfg, relaxed)[2] - load0)
             return cell_residual(rest(pz), pr, cfg, relaxed=relaxed, deformation=(U, jnp.zeros_like(U)),
                                  subcell=subcell)[0]
         C = blocks.stencil(cells, x[:N], n, columns(cfg))
@@ -316,12 +329,75 @@ def linear_model(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     transposed = lambda: stencil_solver(C, border, transposed=True)     # noqa: E731
     if is_rigid(pr) and columns(cfg) <= EXACT_WIDTH:
         return solve, lambda b: transposed()(b)
-    gmres = lambda A, M, b: _krylov.gmres(A, b, M, KRYLOV_TOL, KRYLOV_MAX_ITER)[0]     # noqa: E731
+    return (lambda b: gmres(matvec, solve, b)), solve_transposed(transposed)
 
-    def solve_transposed(b):     # J^T's products traced only where its solve is called
-        _, vjp = jax.vjp(full, x)
-        return gmres(lambda v: vjp(v)[0], transposed(), b)
-    return (lambda b: gmres(matvec, solve, b)), solve_transposed
+
+def _held(x, pr: Params, cfg: Config, relaxed=False):
+    """The bodies' displacement U0 (n, m + 1) (m) and loading pressure (Pa) at x, and each
+    node's own compliance (m/Pa, :func:`own_compliance`): the local model of the bodies in
+    :func:`linear_model`'s preconditioners, U = U0 + own (p - p0)."""
+    f0 = fields(x, pr, cfg, relaxed=relaxed)
+    return f0["uB"] + f0["uJ"], f0["p_load"], own_compliance(pr, cfg).real
+
+
+def _asperity_preconditioner(x, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
+    """The preconditioner of the Newton system with asperity unknowns a (rough surfaces on a
+    deformable body): ``transposed -> (b -> M b)`` (``transposed``: M^T). M is the exact inverse
+    of the local model's Jacobian, the bodies' compliance kept on each node's own entry
+    (:func:`own_compliance`: U = U0 + own (p_load + p_a - p0)). In that model a node's asperity
+    equation, a - p_a(h)/p_ref, involves only its own a, its own film pressure and the position
+    y_e: the asperity unknowns are eliminated node by node, a = D^-1 (b_a - A_ay y) with D the
+    (diagonal) 1 - p_a'(h) own > 1, and the film's 9-point stencil with its border (y =
+    pressures and position) then holds the Schur complement S = A_yy - A_ya D^-1 A_ay, solved as
+    the smooth film's (:func:`stencil_solver`); a is back-substituted."""
+    N, Na = unknowns(cfg), asperity_unknowns(pr, cfg)
+    U0, load0, own = _held(x, pr, cfg, relaxed)
+    a0 = x[N + 2:]
+
+    def local(y, a):         # the local model's equations [cells, asperities, forces]
+        p_a = all_nodes((a - a0).reshape(cfg.n, node_columns(cfg)), cfg) * pr.p_ref
+        U = U0 + own * (loading(interior(y[:N], cfg), pr, cfg, relaxed)[2] - load0 + p_a)
+        r, F, _ = cell_residual(jnp.concatenate([y, a]), pr, cfg, relaxed=relaxed,
+                                deformation=(U, jnp.zeros_like(U)), subcell=subcell)
+        return jnp.concatenate([r, (F + pr.load) / pr.W])
+    film_rows = lambda r: jnp.concatenate([r[:N], r[N + Na:]])     # noqa: E731
+    y0 = x[:N + 2]
+    # D: each asperity row depends on its own node's a alone, so one product gives the diagonal
+    D = jax.jvp(lambda a: local(y0, a)[N:N + Na], (a0,), (jnp.ones_like(a0),))[1]
+    _, A_ay = jax.linearize(lambda y: local(y, a0)[N:N + Na], y0)
+    _, A_ya = jax.linearize(lambda a: film_rows(local(y0, a)), a0)
+
+    def schur(y):            # the film rows with a eliminated: their Jacobian is S
+        return film_rows(local(y, a0 - A_ay(y - y0) / D))
+    colour, seeds = blocks.stencil_seeds(cfg.n, columns(cfg), x.dtype)
+    products = jax.vmap(jax.linearize(schur, y0)[1])(
+        jnp.concatenate([jnp.pad(seeds, ((0, 0), (0, 2))), jnp.eye(2, N + 2, N, dtype=x.dtype)]))
+    C = blocks.stencil_from_products(products[:-2, :N], colour)
+    cols = products[-2:].T
+    _, vjp = jax.vjp(schur, y0)
+    rows = jax.vmap(lambda v: vjp(v)[0])(jnp.eye(2, N + 2, N, dtype=x.dtype))
+    border = (cols[:N], rows[:, :N], cols[N:])
+
+    def forward():
+        S = stencil_solver(C, border)
+
+        def apply(b):        # b: [cells, asperities, forces] -> [pressures, position, asperities]
+            w = b[N:N + Na] / D
+            y = S(film_rows(b) - A_ya(w))
+            return jnp.concatenate([y, w - A_ay(y) / D])
+        return apply
+
+    def transposed():
+        S_T = stencil_solver(C, border, transposed=True)
+        A_ay_T = jax.linear_transpose(A_ay, y0)
+        A_ya_T = jax.linear_transpose(A_ya, a0)
+
+        def apply(c):        # c: [pressures, position, asperities] -> [cells, asperities, forces]
+            w = c[N + 2:] / D
+            u = S_T(c[:N + 2] - A_ay_T(w)[0])
+            return jnp.concatenate([u[:N], w - A_ya_T(u)[0] / D, u[N:]])
+        return apply
+    return lambda transposed_=False: transposed() if transposed_ else forward()
 
 
 def force_balance(x, pr: Params, cfg: Config, relaxed=False):
@@ -352,8 +428,6 @@ def is_rigid(pr: Params):
 
 def solved_by_linear_model(pr: Params, cfg: Config):
     """Whether Newton's steps and the derivatives use :func:`linear_model` (block solve or
-    GMRES), not a dense LU of the AD Jacobian (deformable bodies on small grids, and with
-    rough surfaces on any grid)."""
-    if asperity_unknowns(pr, cfg):
-        return False
+    GMRES), not a dense LU of the AD Jacobian (deformable bodies, smooth or rough, on small
+    grids unless ``cfg.krylov``)."""
     return is_rigid(pr) or cfg.krylov or columns(cfg) > EXACT_WIDTH

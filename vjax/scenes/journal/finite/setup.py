@@ -44,9 +44,6 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
                          "FiniteJournalOptions(spacing='uniform')")
     if roughness is not None:
         checks.instance("roughness", roughness, Roughness, "a vjax.Roughness (or None: smooth surfaces)")
-        if (housing is not None or shaft is not None) and options.linear_solver == "krylov":
-            raise ValueError("linear_solver='krylov': rough surfaces on a deformable body are solved with a dense "
-                             "LU (the asperity pressure an unknown per node); use 'auto' or 'dense'")
     if tilt is not None:
         checks.finite("tilt", tilt)
         if np.shape(tilt) != (2,):
@@ -71,7 +68,7 @@ def setup(R, radial_clearance, viscosity, load, length, *, housing=None, shaft=N
     floor = 1e-10 if jnp.result_type(float) == jnp.float64 else 1e-4
     rigid = housing is None and shaft is None
     cfg = Config(cavitation, n, m, float(options.tol if options.tol is not None else floor), options.max_iter,
-                 krylov=options.krylov and not rigid and roughness is None)
+                 krylov=options.krylov and not rigid)
     pr = _params(*_scene.canonical(R, radial_clearance, viscosity, length, load, load_angle, tilt, omega_housing,
                                    omega_shaft, supply_pressure), mask, float(circumferential), s, housing, shaft,
                  roughness, unknowns=unknowns(cfg), memory=memory)

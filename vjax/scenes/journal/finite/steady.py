@@ -33,8 +33,9 @@ STALL_WINDOW = 12
 def _newton(x0, pr: Params, cfg: Config, relaxed=False, subcell=1.0):
     """The core's Newton; each step by the block solve for rigid bodies; with deformable ones,
     whose compliance couples every cell of an axial slice, by GMRES (``cfg.krylov``,
-    :func:`linear_model`) or a dense LU of the Jacobian from jacfwd (n (m - 1) + 2 unknowns:
-    up to a few thousand)."""
+    :func:`linear_model`; with rough surfaces over the asperity unknowns too) or a dense LU of
+    the Jacobian from jacfwd (n (m - 1) + 2 unknowns, and n (m + 1) asperity ones: up to a few
+    thousand)."""
     def eqs(x, state):
         r, film_margin = equations(x, pr, cfg, relaxed, subcell)
         return r, state, film_margin > 0
@@ -295,8 +296,8 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
     plane-strain slices (:func:`deformations`). ``groove``: "fixed" (the axial groove at
     ``supply_angle``; a feed hole is one with ``supply_width`` = its diameter over L) or
     "circumferential" (round the mid-width, at ``supply_pressure``; ``supply_angle`` unused).
-    ``roughness``: a :class:`~vjax.Roughness` for mixed lubrication (rigid bodies), None for
-    smooth surfaces. Returns :class:`FiniteJournalResult`."""
+    ``roughness``: a :class:`~vjax.Roughness` for mixed lubrication (rigid or deformable bodies),
+    None for smooth surfaces. Returns :class:`FiniteJournalResult`."""
     pr, cfg = setup(R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft,
                     omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, memory=memory,
                     cavitation=cavitation, supply_angle=supply_angle, supply_pressure=supply_pressure,
