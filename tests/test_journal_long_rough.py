@@ -339,3 +339,12 @@ def test_float32_runs_without_nan():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
                          cwd=str(pathlib.Path(__file__).resolve().parents[1]), timeout=300)
     assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]
+
+
+def test_a_closing_smooth_film_says_a_roughness_would_carry_it():
+    """Without a roughness the rigid long bearing's thin-film failure names the film it would
+    need and the roughness that would carry the load; with one the same bearing converges."""
+    message = r"journal_bearing did not converge.* A film of ~9\.4e-05 c.*roughness=vjax\.Roughness"
+    with pytest.raises(vjax.ConvergenceError, match=message):
+        solve(0.01, roughness=None)
+    assert solve(0.01).converged

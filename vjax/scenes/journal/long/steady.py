@@ -157,7 +157,13 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
     # the hint only for a failure it can explain (concrete values; its eager operations
     # would otherwise compile on every first call)
     failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS and roughness is None
-    _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
+    try:
+        _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
+    except _solve.ConvergenceError as error:
+        hint = _roughness_hint(pr) if failed else ""
+        if not hint:
+            raise
+        raise _solve.ConvergenceError(f"{error}{hint}", error.solution) from None
     return sol
 
 
@@ -174,6 +180,20 @@ def _refine_periodic(values, n):
     a, b, c, d = (values[(i + k) % m] for k in (-1, 0, 1, 2))
     p = b + 0.5 * u * ((c - a) + u * ((2 * a - 5 * b + 4 * c - d) + u * (3 * (b - c) + d - a)))
     return jnp.maximum(p, 0.0)
+
+
+def _roughness_hint(pr: film.Params) -> str:
+    """A closing sentence for a rigid smooth bearing's failure where its film would be far
+    thinner than the clearance: rough surfaces would let the asperities carry the load."""
+    if pr.op_B is not None or pr.op_J is not None or not checks.is_concrete((pr.c, pr.W, pr.eta, pr.v)):
+        return ""
+    # the rigid half-Sommerfeld film that carries this load: G ~ 1 / (3 (1 - eps)) for eps -> 1
+    thin = 1.0 / (3.0 * float(film.load_number(pr)))
+    if thin >= 0.01:
+        return ""
+    return (f" A film of ~{thin:.1e} c would carry this load: with smooth surfaces it must carry all of it; give "
+            f"the surfaces' roughness (roughness=vjax.Roughness(...)) and the asperities carry their share (mixed "
+            f"lubrication).")
 
 
 def _failure_hint(pr: film.Params, n: int) -> str:
