@@ -155,6 +155,10 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     bodies by their whirl operators (:func:`vjax.scenes.journal.finite.impedance`); rigid bodies
     give K and C independent of the whirl frequency (but for the "jfo" cavity's own dynamics).
 
+    With ``roughness=`` (rigid bodies, long or finite): the mixed film linearized with its rough
+    fluxes, and the asperities' force, which follows the position at once, adds its derivative
+    to K (no damping); a deformable body with rough surfaces is refused.
+
     >>> import jax; jax.config.update("jax_enable_x64", True)
     >>> co = journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 100.0], omega_shaft=100.0,
     ...                           options=JournalOptions(n=64))
