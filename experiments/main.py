@@ -30,9 +30,11 @@ raises stops it (files are written atomically, so nothing half-written is left b
 The stages run side by side in ``--jobs`` worker processes (default: one per CPU), longest
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. A stage is XLA compiling its solvers (one core's
-work) and running them: on two cores whose calibration total
-(``experiments/benchmarks/calibrate.py``) is 5.5 s, the full run from an empty cache took
-105 s (199 CPU-s; 133 s before the stages compiled less).
+work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). With
+``--no-cache`` the full run took 222 CPU-s (343 s wall on a 2-core machine shared with other
+jobs, calibration total (``experiments/benchmarks/calibrate.py``) 15.3 s before it, 9.4 s
+after); before the per-stage flags, 281 CPU-s (151 s wall on the quiet machine at 5.7 s).
+docs/benchmarks.md, "Main job (issue 42)", has each stage's CPU seconds.
 """
 from __future__ import annotations
 
