@@ -27,6 +27,25 @@ if "VJAX_TEST_XLA_FLAGS_CHECKED" not in os.environ:
 import jax  # noqa: E402
 import pytest  # noqa: E402
 
+# The fast tier (the default `-m "not slow"`, the README's command) compiles with XLA:CPU's LLVM
+# optimization passes off (--xla_backend_optimization_level=0): most of its time is XLA compiling
+# programs that then run for a fraction of a second, and LLVM's passes were about half of each
+# compile (a finite bearing's Newton: 5.1 -> 2.4 CPU-s; the pin, roller and journal dynamics
+# tests: 61 -> 25 CPU-s, the n = 512 ones included, whose heavy work is in XLA's library calls).
+# Results agree with the optimized code's to round-off (measured 1e-16 to 4e-15 of the largest
+# value, a converged pin pressure 2e-12); the whole tier: 585 -> 369 CPU-s (docs/benchmarks.md).
+# The slow tier keeps JAX's default, so `.ci/run` still checks vjax compiled as users compile it.
+# Set before pytest-xdist starts its workers (they inherit it) and before any test module starts
+# JAX's backend; an xla_backend_optimization_level given in XLA_FLAGS is left as it is.
+FAST_TIER_XLA_FLAGS = "--xla_backend_optimization_level=0"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_configure(config):
+    flags = os.environ.get("XLA_FLAGS", "")
+    if config.option.markexpr == "not slow" and "xla_backend_optimization_level" not in flags:
+        os.environ["XLA_FLAGS"] = f"{flags} {FAST_TIER_XLA_FLAGS}".strip()
+
 jax.config.update("jax_enable_x64", True)
 
 # One XLA compilation per program for the whole run. _release_compiled_code (below) drops
