@@ -70,8 +70,10 @@ def wrap_factor(r):
     return np.sum(p_a * dA) / np.hypot(np.sum(p_a * np.cos(theta)[:, None] * dA), np.sum(p_a * np.sin(theta)[:, None] * dA))
 
 
-def main(out_dir="experiments/out", quick=False):
-    out = _common.setup(out_dir) / "stribeck"
+def main(out_dir="experiments/out", quick=False, folder="stribeck"):
+    """The figure and its table in ``<out_dir>/<folder>/`` (the main job's stage: ``folder`` "",
+    its ``out_dir`` the stage's folder already)."""
+    out = _common.setup(out_dir) / folder
     out.mkdir(parents=True, exist_ok=True)
     speeds = np.logspace(-3, 2, 7 if quick else 13)
     rigid = vjax.stribeck_curve(R, C, ETA, W, speeds, roughness=ROUGH, **BEARING)
@@ -110,7 +112,7 @@ def main(out_dir="experiments/out", quick=False):
 
 def stage(out_dir, quick=False):
     """The main job's stage: :func:`main` and its checks."""
-    rigid, lined, smooth, smooth_ok = main(out_dir, quick)
+    rigid, lined, smooth, smooth_ok = main(out_dir, quick, folder="")
     slow = rigid.results[0]
     top = -1
     checks = (
@@ -129,7 +131,7 @@ def stage(out_dir, quick=False):
              "mu_b = 0.1), a rigid bush and a 2 mm polymer liner loaded by the film and the asperities together, "
              "against today's smooth film, which stops where it would close. On 32 x 16 cells, which show the curves' "
              "shape, not their values (128 x 32 or finer for numbers: experiments/studies/stribeck_grid.py).")
-    text = (Path(out_dir) / "stribeck" / "stribeck.txt").read_text()
+    text = (Path(out_dir) / "stribeck.txt").read_text()
     return _common.StageReport(text, about, checks, (("stribeck.png", "friction coefficient and asperity share "
                                                       "against the Hersey number; lift-off where 1 % of the load "
                                                       "is on the asperities"),))
