@@ -310,6 +310,11 @@ def film_power(scene, R, radial_clearance, eta, omega_shaft, omega_housing, supp
     return -(omega_housing * T_B + omega_shaft * T_J), frac
 
 
+# the balance's film power, compiled once per bearing geometry: called eagerly, its scan would be
+# traced and compiled again at every scene solve of the root search
+_film_power = jax.jit(film_power, static_argnums=(6, 7, 8))
+
+
 def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTransfer, *, length=None, housing=None,
                             shaft=None, shift=None, omega_shaft=0.0, omega_housing=0.0, supply_angle=math.pi,
                             supply_width=1.0, cavitation="reynolds", roughness=None, options=None, throw=True,
@@ -355,6 +360,8 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=)")
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
                   heat=heat, housing=housing, shaft=shaft, shift=shift, rough=roughness)
+    static_angle = None if supply_angle is None else float(supply_angle)
+    static_width = float(supply_width)
 
     def balance(T, p):
         eta = p["oil"].viscosity(T)
@@ -373,7 +380,7 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
             P_film = s.power_loss
             P = P_film + P_B + P_J
         else:
-            P_film, _ = film_power(s, p["R"], p["c"], eta, p["wJ"], p["wB"], supply_angle, supply_width, cavitation)
+            P_film, _ = _film_power(s, p["R"], p["c"], eta, p["wJ"], p["wB"], static_angle, static_width, cavitation)
             P = P_film + P_B + P_J
         h = p["heat"]
         G_oil = 2 * p["oil"].density(T) * p["oil"].c_p * s.side_leakage if h.oil_flow else 0.0
