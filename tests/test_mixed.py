@@ -210,3 +210,31 @@ def test_against_the_peer_L_over_D_1_sigma_1um():
 @pytest.mark.parametrize("L_over_D, sigma", [(0.5, 0.5e-6), (0.5, 1e-6), (1.0, 0.5e-6)])
 def test_against_the_peer_other_cases(L_over_D, sigma):
     _against_the_peer(L_over_D, sigma)
+
+
+def test_squeeze_stores_the_expected_gap():
+    """The average flow's transient term is the rate of the volume it stores, the expected gap
+    h_T (Patir and Cheng 1978), not the nominal gap: the cell equations' change under a journal
+    velocity dX/dt (the dynamic coefficients' damping) equals the change of each cell's stored
+    volume R dtheta dz h_T under a displacement dX, by central differences in the position.
+    Full film (linear balances), the journal at e/c = 0.97 (H = h/sigma from 1.5): dh_T/dh
+    differs from 1 by up to 7 %, so the nominal gap's rate would fail by that much."""
+    from vjax.scenes.journal.finite import film, setup as finite_setup
+    from vjax.films import film2d
+    pr, cfg = finite_setup.setup(R, C, ETA, W, L, omega_shaft=1.0, cavitation="sommerfeld", supply_angle=None,
+                                 roughness=ROUGH, options=vjax.FiniteJournalOptions(n=32, m=8))
+    N = film.unknowns(cfg)
+    x = jnp.concatenate([jnp.full(N, 0.1), jnp.array([0.97, 0.0])])
+    V, dX = 1e-3, 1e-9                               # m/s, m
+    at = lambda q: film.cell_residual(x, pr, cfg, jnp.asarray(q))[0][:N]    # noqa: E731
+    squeeze = at([0.0, 0.0, V, 0.0]) - at([0.0, 0.0, 0.0, 0.0])
+    f = film.fields(x, pr, cfg)
+    volume = lambda q: pr.rough.expected_gap(film.fields(x, pr, cfg, jnp.asarray(q))["h"])  # noqa: E731
+    rate = V * (volume([dX, 0.0, 0.0, 0.0]) - volume([-dX, 0.0, 0.0, 0.0])) / (2 * dX)
+    cell_area = pr.R * 2 * np.pi / cfg.n * film2d.node_widths(f["z"])[None, 1:-1]
+    scale = film2d.conductance(f, pr.R, f["z"]) * pr.p_ref
+    expected = (cell_area * rate[:, 1:-1] / scale).ravel()
+    H = np.asarray(f["h"]) / float(pr.rough.sigma)
+    assert H.min() < 2.0                             # the regime where h_T and h differ
+    np.testing.assert_allclose(np.asarray(squeeze), np.asarray(expected), rtol=1e-6,
+                               atol=1e-9 * float(np.max(np.abs(expected))))

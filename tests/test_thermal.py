@@ -408,3 +408,17 @@ def test_mixed_lubrication_heats_by_its_boundary_friction():
                                        thermal.HeatTransfer(40.0, hA=jnp.inf, oil_flow=False), **kw)
     ref = vjax.journal_bearing(0.02505, 5e-5, 0.03, 2000.0, **kw)
     assert float(iso.scene.eccentricity) == float(ref.eccentricity)
+
+
+def test_long_mixed_bearing_heats_by_its_boundary_friction():
+    """The infinitely long bearing in mixed lubrication at its own temperature, per unit length:
+    the power (the drive's, from the scene's torques, the asperities' friction included) is
+    mostly the asperities' mu_b p_a U, and hA (W/(m K)) carries all of it, to 1e-10."""
+    rough = vjax.Roughness.from_surfaces(0.0, 1e-6, 210e9, 0.3, 3e9, 0.4)
+    oil = vjax.Lubricant.constant(0.03, rho=874.0, c_p=1949.0)
+    r = vjax.thermal_journal_bearing(0.02505, 5e-5, oil, 2000.0 / 0.0501, thermal.HeatTransfer(40.0, hA=0.05,
+                                     oil_flow=False), omega_shaft=0.02, roughness=rough,
+                                     options=vjax.JournalOptions(n=64))
+    assert float(r.scene.asperity_share) > 0.3
+    assert float(r.power) > float(r.scene.dissipation_boundary) > 0.5 * float(r.power)
+    assert abs(float(r.power) / (0.05 * (float(r.temperature) - 40.0)) - 1) < 1e-10

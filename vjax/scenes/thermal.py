@@ -334,7 +334,7 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     Without ``length`` the infinitely long bearing, per unit length: no side leakage, so the heat
     leaves through ``heat.hA`` (W/(m K)) alone (``HeatTransfer(oil_flow=False)``), and its power
     is -(omega_B torque + omega_J torque_shaft), the scene's torques (the cavity's film sheared
-    as full, as they count it).
+    as full, as they count it; with ``roughness`` the asperities' friction too).
 
     ``heat``: :class:`HeatTransfer`. ``tol`` (K): of |T - T*(T)| (None: ~1e-10 K in float64).
     ``max_iter``: scene solves. Other arguments as :func:`vjax.journal_bearing` (``throw``
@@ -356,8 +356,6 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
         raise ValueError("omega_shaft, omega_housing: the thermal balance is built for a positive entrainment speed "
                          "(omega_housing R + omega_shaft R_J > 0); turn the bearing the other way round")
     deformable = housing is not None or shaft is not None
-    if roughness is not None and length is None:
-        raise ValueError("roughness: mixed lubrication is solved in the finite bearing (give its length=)")
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
                   heat=heat, housing=housing, shaft=shaft, shift=shift, rough=roughness)
     static_angle = None if supply_angle is None else float(supply_angle)
@@ -366,9 +364,9 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     def balance(T, p):
         eta = p["oil"].viscosity(T)
         at = dict(temperature=T, shift=p["shift"]) if deformable and p["shift"] is not None else {}
-        finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width, roughness=p["rough"])
+        finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width)
         s = journal_bearing(p["R"], p["c"], eta, p["load"], housing=p["housing"], shaft=p["shaft"],
-                            omega_shaft=p["wJ"], omega_housing=p["wB"], supply_angle=supply_angle,
+                            omega_shaft=p["wJ"], omega_housing=p["wB"], supply_angle=supply_angle, roughness=p["rough"],
                             cavitation=cavitation, options=options, throw=False, **finite, **at, **scene_arguments)
         P_B, P_J = -p["wB"] * s.torque_viscoelastic, -p["wJ"] * s.torque_viscoelastic_shaft
         if p["L"] is None:

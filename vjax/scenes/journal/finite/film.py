@@ -226,8 +226,13 @@ def cell_residual(x, pr: Params, cfg: Config, motion=None, relaxed=False, deform
     f = fields(x, pr, cfg, motion, relaxed, deformation)
     out = film2d.net_outflow(f, pr.R, f["z"])
     dth = 2 * jnp.pi / cfg.n
-    # the film's own growth d(h f)/dt per unit area, f the liquid fraction (1 but in a "jfo" cavity)
-    growth = f["hdot"][:, 1:-1] * f["fraction"][:, 1:-1]
+    # the film's own growth d(h f)/dt per unit area, f the liquid fraction (1 but in a "jfo" cavity);
+    # on rough surfaces the average flow stores the expected gap h_T (as its Couette flux carries
+    # it; h with rough.couette == "nominal"): its rate (dh_T/dh) dh/dt
+    hdot = f["hdot"]
+    if pr.rough is not None and pr.rough.couette == "expected":
+        hdot = jax.jvp(pr.rough.expected_gap, (f["h"],), (hdot,))[1]
+    growth = hdot[:, 1:-1] * f["fraction"][:, 1:-1]
     if rate is not None and cfg.cavitation == "jfo":
         growth = growth + f["h"][:, 1:-1] * jnp.where(f["pz"] < 0, interior(rate, cfg), 0.0)
     out = out + pr.R * dth * film2d.node_widths(f["z"])[None, 1:-1] * growth
