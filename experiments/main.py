@@ -31,10 +31,10 @@ The stages run side by side in ``--jobs`` worker processes (default: one per CPU
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. A stage is XLA compiling its solvers (one core's
 work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). With
-``--no-cache`` the full run took 222 CPU-s (343 s wall on a 2-core machine shared with other
-jobs, calibration total (``experiments/benchmarks/calibrate.py``) 15.3 s before it, 9.4 s
-after); before the per-stage flags, 281 CPU-s (151 s wall on the quiet machine at 5.7 s).
-docs/benchmarks.md, "Main job (issue 42)", has each stage's CPU seconds.
+``--no-cache`` the full run took 244 CPU-s (230 s wall on a 2-core machine shared with other
+jobs, calibration total (``experiments/benchmarks/calibrate.py``) 11.7 s right before it);
+before the per-stage flags, 281 CPU-s (151 s wall on the quiet machine at 5.7 s). Each stage
+alone, in the same hour: 368 -> 219 CPU-s (docs/benchmarks.md, "Main job (issue 42)").
 """
 from __future__ import annotations
 
