@@ -159,6 +159,7 @@ CASES = [
     ("pin-temperature-nan", lambda: _pin(temperature=NAN, shift=WLF(8.0, 100.0, 25.0)), r"temperature must be finite"),
     # ---- journal bearing
     ("journal-R-nan", lambda: _journal(R=NAN), r"R must be finite"),
+    ("journal-long-no-groove", lambda: _journal(supply_angle=None), r"supply_angle: the infinitely long.*length="),
     ("journal-clearance-above-R", lambda: _journal(radial_clearance=0.06), r"radial_clearance must be < R"),
     ("journal-clearance-zero", lambda: _journal(radial_clearance=0.0), r"radial_clearance must be > 0"),
     ("journal-viscosity-zero", lambda: _journal(viscosity=0.0), r"viscosity must be > 0"),

@@ -331,6 +331,9 @@ def setup(R, radial_clearance, viscosity, load, *, housing, shaft, omega_shaft, 
     check_arguments(R, radial_clearance, viscosity, load, omega_shaft=omega_shaft, omega_housing=omega_housing,
                     load_angle=load_angle, memory=memory, cavitation=cavitation, supply_pressure=supply_pressure)
     checks.one_of("groove", groove, GROOVES)
+    if supply_angle is None:
+        raise ValueError("supply_angle: the infinitely long bearing's film has a groove (its ambient datum): give "
+                         "its angle (rad); a film without a groove is the finite bearing's (give length=)")
     _scene.scalars(checks.finite, supply_angle=supply_angle)
     sa = checks.values("supply_angle", supply_angle)
     if sa is None:
