@@ -233,9 +233,11 @@ def solve(pr: Params, cfg: Config, start: str = "given") -> tuple[jax.Array, _so
                                 block)(pr)
 
 
-@partial(jax.jit, static_argnums=(1, 2))
-def _run(pr: Params, cfg: Config, start: str):
-    x, stats = solve(pr, cfg, start)
+@partial(jax.jit, static_argnums=(1,))
+def _run(pr: Params, cfg: Config):
+    """The steady solve from ``pr.x0``, or from the rigid estimate where x0 is not finite (a cold
+    start is x0 = NaN): one program for a sweep's cold first point and its warm ones."""
+    x, stats = solve(pr, cfg, "given_or_guess")
     return outputs(x, pr, cfg, stats)
 
 
@@ -307,12 +309,12 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
     # an aligned bearing's pressure is symmetric about mid-width (the grooves, the bodies and the
     # axial nodes are): the steady solve keeps the unknowns from mid-width to one end
     cfg = dataclasses.replace(cfg, half=tilt is None)
-    pr = dataclasses.replace(pr, x0=jnp.zeros(unknowns(cfg) + 2 + asperity_unknowns(pr, cfg), pr.x0.dtype))
-    start = "guess"
+    # x0 = NaN: from the rigid estimate (:func:`_run`)
+    pr = dataclasses.replace(pr, x0=jnp.full(unknowns(cfg) + 2 + asperity_unknowns(pr, cfg), jnp.nan, pr.x0.dtype))
     if initial is not None:
         if not isinstance(initial, FiniteJournalResult) or initial.pressure.shape != (n, m + 1):
             raise ValueError(f"initial must be a FiniteJournalResult of the same grid (n = {n}, m = {m})")
-        pr, start = dataclasses.replace(pr, x0=start_from(initial, pr, cfg)), "given"
+        pr = dataclasses.replace(pr, x0=start_from(initial, pr, cfg))
     elif nests(options):
         coarse = finite_journal_bearing(
             R, radial_clearance, viscosity, load, length, housing=housing, shaft=shaft, omega_shaft=omega_shaft,
@@ -320,8 +322,8 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
             supply_angle=supply_angle, supply_pressure=supply_pressure, supply_width=supply_width, tilt=tilt,
             temperature=temperature, shift=shift, groove=groove, roughness=roughness, throw=False,
             options=_coarse_options(options))
-        pr, start = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg)), "given_or_guess"
-    sol = _run(pr, cfg, start)
+        pr = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg))
+    sol = _run(pr, cfg)
     # the hint only for a failure it can explain (concrete values)
     failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
     _solve.report("journal_bearing (finite length)" + (_thin_film_hint(sol, pr) if failed else ""), sol, throw)
