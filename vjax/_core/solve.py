@@ -59,7 +59,7 @@ class Stats:
         return self.result == SUCCESS
 
 
-def _fail_message(what, result, iterations, residual):
+def _fail_message(what, result, iterations, residual, hint=""):
     result, iterations, residual = (np.asarray(a) for a in (result, iterations, residual))
     bad = np.flatnonzero(result.ravel() != SUCCESS)
     if bad.size == 0:
@@ -69,27 +69,29 @@ def _fail_message(what, result, iterations, residual):
     return (f"{what} did not converge{where}: {MESSAGES[int(result.ravel()[i])]} after "
             f"{int(np.ravel(iterations)[i])} iterations, residual {float(np.ravel(residual)[i]):.3e}. "
             f"The error's .solution holds the unconverged result (outside jit), as throw=False would; "
-            f"or change the options.")
+            f"or change the options.{hint}")
 
 
-def _raise(what, result, iterations, residual, solution=None):
-    message = _fail_message(what, result, iterations, residual)
+def _raise(what, result, iterations, residual, solution=None, hint=""):
+    message = _fail_message(what, result, iterations, residual, hint)
     if message is not None:
         raise ConvergenceError(message, solution)
 
 
-def report(what: str, stats: Stats, throw: bool) -> None:
-    """Raise :class:`ConvergenceError` if ``stats`` failed and ``throw``; inside jit too."""
+def report(what: str, stats: Stats, throw: bool, hint: str = "") -> None:
+    """Raise :class:`ConvergenceError` if ``stats`` failed and ``throw``; inside jit too.
+    ``hint``: a closing sentence for the message (what else the user could do)."""
     if not throw:
         return
     args = (stats.result, stats.iterations, stats.residual)
     if is_concrete(args):
-        _raise(what, *args, solution=stats)
+        _raise(what, *args, solution=stats, hint=hint)
     else:
         # The host callback only on failure: run on every call it cost ~0.4 ms, more than
         # a whole pin solve at n = 512. (Under vmap the cond runs both branches, as before.)
         jax.lax.cond(jnp.any(stats.result != SUCCESS),
-                     lambda a: jax.debug.callback(lambda *b: _raise(what, *b), *a), lambda a: None, args)
+                     lambda a: jax.debug.callback(lambda *b: _raise(what, *b, hint=hint), *a), lambda a: None,
+                     args)
 
 
 def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None,

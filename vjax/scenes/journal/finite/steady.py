@@ -326,13 +326,13 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
     sol = _run(pr, cfg)
     # the hint only for a failure it can explain (concrete values)
     failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS
-    _solve.report("journal_bearing (finite length)" + (_thin_film_hint(sol, pr) if failed else ""), sol, throw)
+    _solve.report("journal_bearing (finite length)", sol, throw, hint=_thin_film_hint(sol, pr) if failed else "")
     return sol
 
 
 def _thin_film_hint(sol: FiniteJournalResult, pr: Params) -> str:
-    """A note for a smooth bearing's failure where its film nearly closes: rough surfaces would
-    let the asperities carry the load (mixed lubrication)."""
+    """A closing sentence for a smooth bearing's failure where its film nearly closes: rough
+    surfaces would let the asperities carry the load (mixed lubrication)."""
     if pr.rough is not None or not checks.is_concrete((pr.W, pr.v, pr.eta, pr.c)):
         return ""
     # the film the rigid estimate needs to carry the load: 1 - eps where its capacity is W
@@ -342,6 +342,6 @@ def _thin_film_hint(sol: FiniteJournalResult, pr: Params) -> str:
     thin = gaps[np.argmax(short)]
     if not short.any() or thin >= 0.05:
         return ""
-    return (f" (a film of ~{thin:.2g} c would carry this load: with smooth surfaces it must carry all of it; "
-            f"give the surfaces' roughness, roughness=vjax.Roughness(...), and the asperities carry their share: "
-            f"mixed lubrication)")
+    return (f" A film of ~{thin:.2g} c would carry this load: with smooth surfaces it must carry all of it; give "
+            f"the surfaces' roughness (roughness=vjax.Roughness(...)) and the asperities carry their share (mixed "
+            f"lubrication).")

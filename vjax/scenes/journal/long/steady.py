@@ -157,13 +157,8 @@ def long_journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, 
     # the hint only for a failure it can explain (concrete values; its eager operations
     # would otherwise compile on every first call)
     failed = throw and checks.is_concrete(sol.result) and int(sol.result) != _solve.SUCCESS and roughness is None
-    try:
-        _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw)
-    except _solve.ConvergenceError as error:
-        hint = _roughness_hint(pr) if failed else ""
-        if not hint:
-            raise
-        raise _solve.ConvergenceError(f"{error}{hint}", error.solution) from None
+    _solve.report("journal_bearing" + (_failure_hint(pr, n) if failed else ""), sol, throw,
+                  hint=_roughness_hint(pr) if failed else "")
     return sol
 
 
