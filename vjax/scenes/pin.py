@@ -22,12 +22,11 @@ reaches 0.1, about 1% of the load).
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
 
 import jax
 import jax.numpy as jnp
 
-from .._core import checks, scene as _scene, solve as _solve
+from .._core import checks, scene as _scene, solve as _solve, xla
 from ..bodies.body import Body, as_body, check_fits, hole
 from ..contact.solve import ContactOptions, solve_contact, solve_with_fallback
 from ..bodies.operator import grid, memory_revolutions, spectral_derivative
@@ -179,7 +178,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
     return result
 
 
-@partial(jax.jit, static_argnums=(7, 8))
+@xla.jit(static_argnums=(7, 8))
 def _pin_in_hole(housing: Body, R, c, load, load_angle, omega, start, memory, options):
     n = options.n
     R_pin = R - c

@@ -21,18 +21,17 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from functools import partial
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from .._core import checks, krylov, scene as _scene, solve as _solve
+from .._core import checks, krylov, scene as _scene, solve as _solve, xla
 from .._core.solve import ConvergenceError
 from ..films import energy, film2d
 from ..materials.lubricant import as_lubricant
 from .journal.finite import setup as _finite_setup
-from .journal.finite.film import equations, fields, linear_model, solved_by_linear_model, unknowns
+from .journal.finite.film import equations, fields, linear_model, solved_by_linear_model
 from .journal.finite.outputs import outputs
 from .journal.finite.steady import finite_journal_bearing, solve as _finite_solve
 from .journal.options import FiniteJournalOptions
@@ -262,10 +261,10 @@ def _round(carry, params, st: _Static, shape):
     return jnp.where(ok, x, x_good), T_next, change, k + 1, jnp.where(ok, 0, fails + 1), (dT, dF, T_prev, F_prev)
 
 
-_round_compiled = jax.jit(_round, static_argnums=(2, 3))
+_round_compiled = xla.jit(_round, static_argnums=(2, 3))
 
 
-@partial(jax.jit, static_argnums=(2, 3))
+@xla.jit(static_argnums=(2, 3))
 def _first_temperatures(x0, params, st: _Static, shape):
     """The rounds' start: the energy equation's field G0 at the cold film (x0, the supply
     temperature's viscosity), scaled to the mean rise r that a film whose dissipation followed
@@ -422,7 +421,7 @@ def _finish(x0, T0, params, st: _Static, shape, lubricant, heat, throw):
     return out
 
 
-@partial(jax.jit, static_argnums=(2, 3))
+@xla.jit(static_argnums=(2, 3))
 def _outputs(u, params, st: _Static, shape, stats, lubricant):
     heat = params["heat"]
     n_T = shape[0] * shape[1]
@@ -446,7 +445,6 @@ def _outputs(u, params, st: _Static, shape, stats, lubricant):
         - parts["hB"] * (parts["T_B"] - heat.T_supply) - parts["hJ"] * (parts["T_J"] - heat.T_supply)
     heat_groove = -jnp.sum(jnp.where(g, imbalance, 0.0))
     groove_line = jnp.argmax(jnp.sum(pr.groove, axis=1))
-    wz = film2d.node_widths(scene.z)
     return FilmTemperatureResult(
         temperature=T, max_temperature=jnp.max(T), mean_temperature=heat.T_supply + _area_mean(T_rise, params, st),
         groove_temperature=T[groove_line],

@@ -11,7 +11,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from ...._core import checks, krylov as _krylov, solve as _solve
+from ...._core import checks, krylov as _krylov, solve as _solve, xla
 from ....bodies.land import dct1, idct1
 from ....bodies.operator import grid
 from ....films import blocks, film2d, reynolds
@@ -52,7 +52,7 @@ def _whirl_response(pr: Params, cfg: Config, bodies, W):
     return response
 
 
-@partial(jax.jit, static_argnums=(2, 5))
+@xla.jit(static_argnums=(2, 5))
 def impedance(x0, pr: Params, cfg: Config, bodies, whirl, tilt: bool = False):
     """Z(Omega) = K + i Omega C (complex, absolute axes) of the finite bearing about the steady
     unknowns x0 (whole width) at the whirl frequencies ``whirl`` (k,) (rad/s), and the

@@ -42,12 +42,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from functools import partial
 
 import jax
 import jax.numpy as jnp
 
-from ...._core import solve as _solve
+from ...._core import solve as _solve, xla
 from ....bodies.operator import circulant, grid
 from ....films import reynolds
 from ..options import JournalOptions
@@ -99,7 +98,7 @@ def _perturbed_equations(pz, pzdot, U, Udot, motion, x0, pr: film.Params, cfg: f
     return r, F
 
 
-@partial(jax.jit, static_argnums=(2,))
+@xla.jit(static_argnums=(2,))
 def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
     """Z(Omega) (complex, (m, 2, 2), absolute frame) about the steady unknowns ``x0``;
     ``bodies``: (housing, R_housing, omega relative to it, shaft, ...) or None entries."""
@@ -160,7 +159,7 @@ def _impedance(x0, pr: film.Params, cfg: film.Config, bodies, whirl):
     return jnp.einsum("ij,mjk,lk->mil", R, Z_grid, R)
 
 
-@partial(jax.jit, static_argnames="cfg")
+@xla.jit(static_argnames="cfg")
 def _linearized(x0, pr: film.Params, bodies, whirl, cfg: film.Config):
     """(Z, C, Stats of the half-Sommerfeld pressure's solve or None) about the steady unknowns
     ``x0``; one compiled program per configuration (the solve of the unclipped pressure's

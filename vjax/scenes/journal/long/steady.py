@@ -10,7 +10,7 @@ from functools import partial
 import jax
 import jax.numpy as jnp
 
-from ...._core import checks, solve as _solve
+from ...._core import checks, solve as _solve, xla
 from .... import reference
 from ....bodies.operator import RingOperator
 from ....films import reynolds
@@ -101,7 +101,7 @@ def _solve_steady(pr: film.Params, cfg: film.Config, subcell=True):
     return x, (_solve.Stats(stats.iterations, residual, result), stages)
 
 
-@partial(jax.jit, static_argnums=(1,))
+@xla.jit(static_argnums=(1,))
 def _run(pr: film.Params, cfg: film.Config):
     residual = lambda x, aux, prm: film.equations(x, prm, cfg)[0]
     linear_solver = None

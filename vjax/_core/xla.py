@@ -1,0 +1,72 @@
+"""XLA options for vjax's largest compiled programs (internal).
+
+Most of a scene's first call is XLA compiling its solver: a whole damped Newton with its
+equations, their block Jacobian and its factorization in one program. On the CPU backend the
+options below compile such programs much faster, to the same results up to round-off
+(measurements in docs/benchmarks.md: a rigid finite bearing on 256 x 64, its two Newton
+programs, 7.7 s of XLA at the defaults, 3.2 s with these):
+
+- ``xla_cpu_use_fusion_emitters=False``: XLA:CPU's classic loop emitters in place of the
+  MLIR fusion emitters (about 1.5x faster to compile for these programs; as fast to run,
+  the long JFO bearing's 15 % slower);
+- ``xla_backend_optimization_level=1`` (:data:`CLASSIC`): faster to compile than the default
+  level, as fast to run for these loops of small dense steps;
+- ``xla_backend_optimization_level=0`` (:data:`START`) for programs that run briefly (a coarse
+  grid's cold start): 2-3x faster to compile, several times slower to run.
+
+:func:`jit` is ``jax.jit`` with these options. An option the user sets in ``XLA_FLAGS`` is
+theirs (the per-program option would override it, so it is not passed); on other backends,
+or with a jaxlib that does not know an option, none is passed.
+"""
+from __future__ import annotations
+
+import functools
+import os
+
+import jax
+
+CLASSIC = {"xla_cpu_use_fusion_emitters": False, "xla_backend_optimization_level": 1}   # solver programs
+START = {**CLASSIC, "xla_backend_optimization_level": 0}     # a start's program: runs briefly
+
+
+@functools.lru_cache(maxsize=None)
+def _accepted(items: tuple) -> tuple:
+    """The options of ``items`` to pass: none off the CPU backend or where the installed jaxlib
+    rejects them (probed once on a trivial program), and none that XLA_FLAGS sets."""
+    if jax.default_backend() != "cpu":
+        return ()
+    flags = os.environ.get("XLA_FLAGS", "")
+    items = tuple((k, v) for k, v in items if f"--{k}=" not in flags)
+    try:
+        jax.jit(lambda x: x + 1, compiler_options=dict(items)).lower(1.0).compile()
+    except Exception:        # an older jaxlib: an unknown option, or no compiler_options at all
+        return ()
+    return items
+
+
+def jit(fun=None, *, options=CLASSIC, **jit_kwargs):
+    """``jax.jit(fun, **jit_kwargs)`` compiled with the XLA ``options`` (:data:`CLASSIC`,
+    :data:`START`) that apply here (:func:`_accepted`), decided at the first call (after the
+    user's JAX configuration); inside another transformation, plain ``jax.jit``. Usable as a
+    decorator, with or without arguments."""
+    if fun is None:
+        return functools.partial(jit, options=options, **jit_kwargs)
+
+    plain = jax.jit(fun, **jit_kwargs)
+
+    @functools.lru_cache(maxsize=None)
+    def compiled():
+        chosen = _accepted(tuple(sorted(options.items())))
+        return jax.jit(fun, **jit_kwargs, compiler_options=dict(chosen)) if chosen else plain
+
+    def choose(args, kwargs):
+        # inside another transformation (jit, grad, vmap) the program is the caller's: JAX takes
+        # compiler options only on a top-level jit
+        traced = any(isinstance(leaf, jax.core.Tracer) for leaf in jax.tree_util.tree_leaves((args, kwargs)))
+        return plain if traced else compiled()
+
+    @functools.wraps(fun)
+    def call(*args, **kwargs):
+        return choose(args, kwargs)(*args, **kwargs)
+    call.lower = lambda *args, **kwargs: choose(args, kwargs).lower(*args, **kwargs)
+    return call
