@@ -520,3 +520,21 @@ def test_fine_grids_start_from_the_coarse_grid():
     s = finite(W, 1.0, options=FiniteJournalOptions(n=96, m=32))
     assert bool(s.converged) and int(s.iterations) < 20
     assert abs(float(s.eccentricity) - 0.8) < 4e-3
+
+
+def test_nested_start_and_the_rigid_estimate_reach_the_same_root():
+    """``nested=False`` starts a nesting grid (64 x 32, 2048 cells) from the rigid estimate, not
+    from the 32 x 16 solution: at a moderate eccentricity both starts converge, to the same
+    root (each to Newton's 1e-10), and the nested one through the smaller polishing program in
+    fewer fine-grid steps."""
+    S = 0.3                                     # eps ~ 0.4 at L/D = 1
+    W = (R / C) ** 2 * ETA * N_REV / S * 2 * R * D
+    nested = finite(W, 1.0, options=FiniteJournalOptions(n=64, m=32))
+    direct = finite(W, 1.0, options=FiniteJournalOptions(n=64, m=32, nested=False))
+    assert bool(nested.converged) and bool(direct.converged)
+    assert int(nested.iterations) < int(direct.iterations)
+    assert abs(float(nested.eccentricity) - float(direct.eccentricity)) < 1e-9
+    assert abs(float(nested.attitude_angle) - float(direct.attitude_angle)) < 1e-9
+    np.testing.assert_allclose(nested.pressure, direct.pressure, atol=1e-8 * float(np.max(direct.pressure)))
+    with pytest.raises(ValueError, match="nested"):
+        FiniteJournalOptions(nested="yes")

@@ -349,14 +349,15 @@ def finite_length(out, grid):
     centres). The finite bearings' bore is the 3D hole (``HS_BORE_3D``). Returns (rows per case,
     power-balance error of each finite bearing)."""
     # continuation from the rigid estimate: "auto" would first solve a 4x coarser grid, one more
-    # compiled program for this configuration (the groove fixed)
+    # compiled program for this configuration (the groove fixed); the finite bearings' coarser
+    # grids cannot carry this thin film (their solves stall: 11 s of the stage for nothing)
     sols = {"long": vjax.journal_bearing(RB, C, ETA, LOAD, omega_shaft=WJ, omega_housing=WB, housing=SLS,
                                          groove="fixed", options=vjax.JournalOptions(n=256, strategy="continuation"))}
     for LD in (1.0, 0.5):
         L = 2 * RB * LD
         sols[f"L/D = {LD:g}"] = vjax.journal_bearing(
             RB, C, ETA, LOAD * L, omega_shaft=WJ, omega_housing=WB, housing=HS_BORE_3D, length=L,
-            options=vjax.FiniteJournalOptions(n=grid[0], m=grid[1]))
+            options=vjax.FiniteJournalOptions(n=grid[0], m=grid[1], nested=False))
     rows, balance = {}, {}
     for name, s in sols.items():
         L = 1.0 if name == "long" else float(s.z[-1] - s.z[0])

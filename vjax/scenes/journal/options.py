@@ -59,7 +59,10 @@ class FiniteJournalOptions:
     pressure), axial ``spacing`` "uniform" or "cosine" (nodes clustered at the ends, for long
     bearings whose pressure drops to ambient within about R of the ends), Newton tolerance
     ``tol`` (max-norm of the scaled equations; None: 1e-10 in float64, 1e-4 in float32),
-    ``max_iter`` Newton steps and, with deformable bodies, the ``linear_solver`` of each Newton
+    ``max_iter`` Newton steps, ``nested``: whether a cold solve on a grid of at least 2048 cells
+    starts from a coarser grid's solution (True; False: from the rigid estimate, where a coarse
+    grid cannot carry the load: a soft body's thin film), and, with deformable bodies, the
+    ``linear_solver`` of each Newton
     step, of the implicit derivatives and of the dynamic coefficients' whirl solves: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
     1) cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
     block-tridiagonal Jacobian with each node's own compliance: :func:`linear_model`) or "auto"
@@ -74,6 +77,7 @@ class FiniteJournalOptions:
     tol: float | None = None
     max_iter: int = 60
     linear_solver: str = "auto"
+    nested: bool = True
 
     def __post_init__(self):
         checks.option_count("n", self.n, 8)
@@ -85,6 +89,8 @@ class FiniteJournalOptions:
             checks.option_number("tol", self.tol)
         checks.option_count("max_iter", self.max_iter)
         checks.one_of("linear_solver", self.linear_solver, ("auto", "dense", "krylov"))
+        if not isinstance(self.nested, bool):
+            raise ValueError(f"nested must be True or False, got {self.nested!r}")
 
     @property
     def krylov(self) -> bool:

@@ -276,7 +276,8 @@ def nests(options: FiniteJournalOptions) -> bool:
     nodes every 2nd, 4th, ... node of this one in theta and z, uniform or cosine spacing): on fine grids the rigid
     estimate is far from the root in Newton's terms (a 96 x 32 grid at eps = 0.8, L/D = 1:
     74 steps without converging directly, 9 on 48 x 16)."""
-    return options.n * options.m >= NESTED_MIN_CELLS and options.n % 4 == 0 and options.m % 4 == 0
+    return (options.nested and options.n * options.m >= NESTED_MIN_CELLS and options.n % 4 == 0
+            and options.m % 4 == 0)
 
 
 @partial(jax.jit, static_argnums=(2,))
@@ -333,8 +334,10 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
                                        _coarse_options(options)))
         pr = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg))
         # from the coarse solution Newton alone will do, in a smaller program (less to compile);
-        # not inside a transformation (the fallback's choice needs concrete values) or under JFO
-        if cfg.cavitation == "reynolds" and checks.is_concrete(jax.tree_util.tree_leaves(pr)):
+        # not inside a transformation (the fallback's choice needs concrete values), under JFO,
+        # or where the coarse solve failed (then the rigid estimate starts, :func:`_run`)
+        if (cfg.cavitation == "reynolds" and checks.is_concrete(jax.tree_util.tree_leaves(pr))
+                and bool(coarse.converged)):
             sol = _run_polish(pr, cfg)
             if bool(sol.converged):
                 return sol
