@@ -128,3 +128,23 @@ def test_float32_runs_without_nan():
             u = ring_operator("hole", m, np.float32(R), 256, omega=np.float32(50.0), memory=memory)(
                 jnp.ones(256, jnp.float32))
             assert u.dtype == jnp.float32 and np.all(np.isfinite(u))
+
+
+def test_a_traced_memory_serves_every_model_in_one_program():
+    """The memory as a traced number of revolutions (inf: periodic): one compiled program gives
+    the periodic operator (the complex compliance 1/E*), the thesis's (one revolution of the
+    creep spectrum) and, at a long memory, a truncated history that tends to the periodic one
+    (two independent formulas: the creep spectrum's against the Prony modulus)."""
+    from vjax.bodies.operator import memory_revolutions
+    n, omega = 64, 30.0
+    traced = jax.jit(lambda m: ring_operator("hole", SLS, R, n, omega=omega, memory=m).symbol)
+    for memory in ("periodic", "thesis", 3.0):
+        np.testing.assert_allclose(traced(memory_revolutions(memory)),
+                                   ring_operator("hole", SLS, R, n, omega=omega, memory=memory).symbol, rtol=1e-14)
+    assert traced._cache_size() == 1
+    periodic = np.asarray(traced(np.inf))
+    long = np.asarray(traced(1e4))      # exp(-2 pi 1e4 / (omega lambda)) = 0 for every retardation time here
+    np.testing.assert_allclose(long, periodic, rtol=1e-10)
+    assert not np.allclose(np.asarray(traced(1.0)), periodic, rtol=1e-3)     # the thesis's mode 0 is not rubbery
+    g = jax.grad(lambda m: jnp.real(ring_operator("hole", SLS, R, n, omega=omega, memory=m).symbol[1]))
+    assert np.isfinite(float(g(jnp.inf))) and float(g(jnp.inf)) == 0.0

@@ -28,6 +28,7 @@ Outputs in ``out_dir``: ``pin_fig2_5.png``, ``pin_fig2_6.png``, ``pin_fig2_7.png
 """
 from __future__ import annotations
 
+import functools
 import sys
 
 from experiments import _common
@@ -42,6 +43,7 @@ import numpy as np  # noqa: E402
 import vjax  # noqa: E402
 from experiments.figures import persson  # noqa: E402
 from vjax import reference  # noqa: E402
+from vjax.operator import memory_revolutions  # noqa: E402
 
 
 def _write_csv(path, header, rows, comments=()):
@@ -66,12 +68,19 @@ def material():
     return vjax.Material.sls(E0, EINF, TAU, NU)
 
 
-def sweep(memory, speeds, n):
-    """pin_in_hole at patch speeds omega~ / tau, one vmap over speeds (memory and n static)."""
+@functools.lru_cache(maxsize=None)
+def _sweep_program(n):
+    """pin_in_hole over patch speeds omega~ / tau (a vmap), the memory model an argument (its
+    number of revolutions, traced): one compiled program for both models."""
     m, load, c = material(), F_TILDE * E0 * R, R - R_PIN
-    fn = jax.jit(jax.vmap(lambda w: vjax.pin_in_hole(
+    return jax.jit(jax.vmap(lambda w, memory: vjax.pin_in_hole(
         m, R, c, load, omega_shaft=vjax.pin_shaft_speed(w / TAU, R, c), memory=memory,
-        options=vjax.PinOptions(n=n), throw=False)))
+        options=vjax.PinOptions(n=n), throw=False), in_axes=(0, None)))
+
+
+def sweep(memory, speeds, n):
+    """pin_in_hole at patch speeds omega~ / tau, one vmap over speeds (:func:`_sweep_program`)."""
+    fn = lambda w: _sweep_program(n)(w, memory_revolutions(memory))     # noqa: E731
     res = jax.block_until_ready(fn(jnp.asarray(speeds)))
     if not bool(np.all(np.asarray(res.converged))):
         bad = np.asarray(speeds)[~np.asarray(res.converged)]

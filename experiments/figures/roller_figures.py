@@ -46,7 +46,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import vjax  # noqa: E402
-from vjax.operator import grid  # noqa: E402
+from vjax.operator import grid, memory_revolutions  # noqa: E402
 
 RO, RI, D, Z = 6e-3, 4e-3, 2e-3, 9
 E0, EINF, TAU, NU = 1e6, 1e7, 0.01, 0.5
@@ -90,26 +90,27 @@ def _record(r, load):
                 iterations=r.iterations, residual=r.residual, converged=r.converged)
 
 
-def make_sweep(n, memory, outer_only=False):
-    """Jitted continuation sweep ``f(material, load, shaft_speeds) -> (dict of arrays, RollerResult)``,
-    the results stacked along the speeds (the snapshots of Figs. 2.16-2.20 are points of such a
-    sweep: one compiled program per memory for both)."""
-    def solve(mat, load, w, initial=None):
+def make_sweep(n, outer_only=False):
+    """Jitted continuation sweep ``f(material, load, shaft_speeds, memory) -> (dict of arrays,
+    RollerResult)``, the results stacked along the speeds, ``memory`` the number of revolutions
+    (inf: periodic; traced): one compiled program for both memory models, and for the snapshots
+    of Figs. 2.16-2.20 (points of such a sweep)."""
+    def solve(mat, load, w, memory, initial=None):
         shaft = None if outer_only else mat
         return vjax.roller_bearing(mat, shaft, RO, RI, D, Z, load, omega_shaft=w, memory=memory,
                                    options=vjax.RollerOptions(n=n), initial=initial, throw=False)
 
     @jax.jit
-    def sweep(mat, load, ws):
-        r0 = solve(mat, load, ws[0])
+    def sweep(mat, load, ws, memory):
+        r0 = solve(mat, load, ws[0], memory)
 
         def step(prev, w):
-            r = solve(mat, load, w, initial=prev)
+            r = solve(mat, load, w, memory, initial=prev)
             return r, (_record(r, load), r)
 
         return jax.lax.scan(step, r0, ws)[1]
 
-    return sweep
+    return lambda mat, load, ws, memory="periodic": sweep(mat, load, ws, memory_revolutions(memory))
 
 
 def _zero_ranges(w, loads, idx):
@@ -240,13 +241,13 @@ def main(out_dir="experiments/out", quick=False):
     w = np.logspace(-4, 4, nw)
     lines = [f"roller_figures: thesis case, n = {n} elements per ring, {nw} speeds omega~ = 1e-4..1e4"]
     t0 = time.perf_counter()
-    sweeps = {mem: make_sweep(n, mem) for mem in MEMORIES}
+    sweep = make_sweep(n)
     torque_res = {}
     for mem in MEMORIES:
         for Ft in (LOADS if not quick else (F_TILDE,)):
             load = Ft * E0 * RO
             t = time.perf_counter()
-            s = jax.device_get(sweeps[mem](SLS, load, jnp.asarray(shaft_speed(w)))[0])
+            s = jax.device_get(sweep(SLS, load, jnp.asarray(shaft_speed(w)), mem)[0])
             torque_res[(mem, Ft)] = {k: np.asarray(v) for k, v in s.items()}
             lines.append(f"  sweep {mem:8s} F~={Ft:g}: {time.perf_counter() - t:6.1f} s, all converged: "
                          f"{bool(np.all(s['converged']))}, Newton iterations {int(np.min(s['iterations']))}-"
@@ -280,7 +281,7 @@ def main(out_dir="experiments/out", quick=False):
                                              zip(SNAPS[1:-1], SNAPS[2:], steps)])
     snaps = {}
     for mem in MEMORIES:
-        rec, full = jax.device_get(sweeps[mem](SLS, F_TILDE * E0 * RO, jnp.asarray(shaft_speed(snap_ws))))
+        rec, full = jax.device_get(sweep(SLS, F_TILDE * E0 * RO, jnp.asarray(shaft_speed(snap_ws)), mem))
         lines.append(f"  snapshots {mem}: all converged {bool(np.all(rec['converged']))}")
         for wt in SNAPS:
             i = int(np.flatnonzero(snap_ws == wt)[0])
@@ -337,7 +338,7 @@ def main(out_dir="experiments/out", quick=False):
     # torque versus shaft speed at two temperatures (after Figs. 2.24-2.29)
     rpm = np.logspace(0, 4, 12 if quick else 30)
     load = 50.0 / NEEDLE_LENGTH
-    sweep_T = make_sweep(n, "periodic", outer_only=True)
+    sweep_T = make_sweep(n, outer_only=True)
     rows, fig = [], plt.figure(figsize=(6, 4), constrained_layout=True)
     for T in (30.0, 50.0):
         mat = POLY.at_temperature(WLF, T)

@@ -45,7 +45,11 @@ from ..materials.viscoelastic import Material
 
 
 def memory_revolutions(memory) -> float:
-    """Number of revolutions of load history: inf for "periodic", 1 for "thesis"."""
+    """Number of revolutions of load history: inf for "periodic", 1 for "thesis". A traced
+    number (revolutions, inf for periodic) is returned as it is: a program that takes the
+    memory as an argument serves every memory model (:func:`effective_compliance`)."""
+    if isinstance(memory, jax.core.Tracer):
+        return memory
     if isinstance(memory, str):
         checks.one_of("memory", memory, ("periodic", "thesis"))
         return np.inf if memory == "periodic" else 1.0
@@ -59,13 +63,23 @@ def memory_revolutions(memory) -> float:
 
 
 def effective_compliance(material: Material, modes, omega, memory="periodic"):
-    """Jeff_n (1/Pa) of Fourier modes ``modes`` (signed integers) for a pattern at ``omega`` (rad/s)."""
+    """Jeff_n (1/Pa) of Fourier modes ``modes`` (signed integers) for a pattern at ``omega`` (rad/s).
+    ``memory``: "periodic", "thesis", a number of revolutions, or a traced one (inf: periodic),
+    for which both models are compiled and the value picks one when the program runs."""
     modes = jnp.asarray(modes)
     if material.is_elastic:  # no memory terms at all
         return jnp.broadcast_to(1.0 / material.E0, modes.shape)
     m = memory_revolutions(memory)
-    if np.isinf(m):
-        return material.compliance(-modes * omega)
+    periodic = lambda: material.compliance(-modes * omega)     # noqa: E731
+    if not isinstance(m, jax.core.Tracer):
+        return periodic() if np.isinf(m) else _truncated(material, modes, omega, m)
+    # the truncated branch at a finite m whatever m is, so that its derivatives stay finite
+    return jax.lax.cond(jnp.isinf(m), periodic,
+                        lambda: _truncated(material, modes, omega, jnp.where(jnp.isinf(m), 1.0, m)))
+
+
+def _truncated(material: Material, modes, omega, m):
+    """Eq. 2.14/2.16: the load history truncated to m revolutions (module docstring)."""
     spec = material.creep_spectrum()
     speed = jnp.abs(omega)
     moving = speed > 0
@@ -174,13 +188,15 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     checks.finite("omega", omega)
     for name, val in (("R", R), ("ref_length", ref_length), ("omega", omega)):
         checks.scalar(name, val)
-    memory_revolutions(memory)
+    # the memory as a number (revolutions, inf: periodic), traced: one program for every model
+    memory = jnp.asarray(memory_revolutions(memory), jnp.result_type(float))
     return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length, thickness), int(n))
 
 
-@partial(jax.jit, static_argnums=(0, 3, 5))
+@partial(jax.jit, static_argnums=(0, 3))
 def _symbol(kind, material, R, n, omega, memory, ref_length, thickness):
-    """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, memory, material shape)."""
+    """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, material shape), ``memory``
+    (revolutions, inf: periodic) traced."""
     modes = jnp.arange(n // 2 + 1, dtype=jnp.result_type(float))
     return R * element_symbol(kind, n, R, material.nu, ref_length, thickness) * effective_compliance(
         material, modes, omega, memory)

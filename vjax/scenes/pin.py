@@ -143,7 +143,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
     between 1 m and the small-displacement choice e = c.
 
     Differentiable (jit, vmap, grad, jacfwd) in the body, radii, load, angle and speeds;
-    compiled once per (options, memory) and material shape.
+    compiled once per options and material shape.
 
     >>> from vjax import Material
     >>> m = Material.sls(1e6, 1e7, 0.01, 0.5)
@@ -161,7 +161,6 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
     if r_ is not None and c_ is not None and not c_ < r_:
         raise ValueError(f"radial_clearance must be smaller than the bore radius R, got "
                          f"radial_clearance={radial_clearance!r} >= R={R!r}")
-    memory_revolutions(memory)
     check_fits("housing", housing, R)
     (housing,) = _scene.at_temperature(temperature, shift, housing)
     start = None
@@ -171,6 +170,8 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
         start = (initial.pin_offset, initial.pressure)
     omega = pin_patch_speed(omega_shaft, omega_housing, R, radial_clearance)
     R, radial_clearance, load, load_angle, omega = _scene.canonical(R, radial_clearance, load, load_angle, omega)
+    # the memory as a traced number of revolutions (inf: periodic): one program for every model
+    memory = jnp.asarray(memory_revolutions(memory), jnp.result_type(float))
     result = solve_with_fallback(
         lambda opts: _pin_in_hole(housing, R, radial_clearance, load, load_angle, omega, start, memory, opts),
         options)
@@ -178,7 +179,7 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
     return result
 
 
-@xla.jit(static_argnums=(7, 8))
+@xla.jit(static_argnums=(8,))
 def _pin_in_hole(housing: Body, R, c, load, load_angle, omega, start, memory, options):
     n = options.n
     R_pin = R - c
