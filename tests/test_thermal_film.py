@@ -202,3 +202,21 @@ def test_a_sweep_starts_from_its_last_point():
     assert abs(float(warm.scene.eccentricity) - float(cold.scene.eccentricity)) < 1e-8
     with pytest.raises(ValueError, match="initial"):
         bearing(heat, initial=first.scene)
+
+
+def test_a_nesting_grid_starts_from_the_coarse_grids_solution():
+    """On 64 x 32 (2048 cells) the rounds start from the 32 x 16 thermal solution refined; with
+    ``nested=False`` from the cold film at the supply temperature. Both reach the same root (to
+    the rounds' 1e-9 K and Newton's 1e-10), the nested one with fewer rounds on the fine grid,
+    and its heat balance closes."""
+    heat = vjax.FilmHeat(T_supply=40.0)
+    nested = bearing(heat, n=64, m=32)
+    direct = vjax.thermal_film_bearing(RB, C, OIL, 1e6 * 0.1 * 0.1, heat, length=0.1, omega_shaft=OMEGA,
+                                       options=vjax.FiniteJournalOptions(n=64, m=32, nested=False))
+    assert bool(nested.converged) and bool(direct.converged)
+    assert int(nested.iterations) < int(direct.iterations)
+    # 1e-6 K: the rupture's nodes (their partial-cavitation switch is steep) differ by up to 2.4e-7 K
+    np.testing.assert_allclose(np.asarray(nested.temperature), np.asarray(direct.temperature), rtol=0, atol=1e-6)
+    assert abs(float(nested.scene.eccentricity) - float(direct.scene.eccentricity)) < 1e-8
+    out = float(nested.heat_ends + nested.heat_groove + nested.heat_bush + nested.heat_journal)
+    assert abs(out - float(nested.power)) < 1e-10 * float(nested.power)
