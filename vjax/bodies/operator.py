@@ -33,7 +33,6 @@ keeps the operator real and equal to its dense matrix.
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
 
 import jax
 import jax.numpy as jnp
@@ -188,18 +187,22 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     checks.finite("omega", omega)
     for name, val in (("R", R), ("ref_length", ref_length), ("omega", omega)):
         checks.scalar(name, val)
-    # the memory as a number (revolutions, inf: periodic), traced: one program for every model
-    memory = jnp.asarray(memory_revolutions(memory), jnp.result_type(float))
-    return RingOperator(_symbol(kind, material, R, int(n), omega, memory, ref_length, thickness), int(n))
+    m = memory_revolutions(memory)
+    # a concrete memory is static (a program holds its own model); a traced one (revolutions,
+    # inf: periodic) serves every model in one program (:func:`effective_compliance`)
+    symbol = _symbol_traced if isinstance(m, jax.core.Tracer) else _symbol
+    return RingOperator(symbol(kind, material, R, int(n), omega, m, ref_length, thickness), int(n))
 
 
-@partial(jax.jit, static_argnums=(0, 3))
-def _symbol(kind, material, R, n, omega, memory, ref_length, thickness):
-    """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, material shape), ``memory``
-    (revolutions, inf: periodic) traced."""
+def _symbol_fn(kind, material, R, n, omega, memory, ref_length, thickness):
+    """R L^_n Jeff_n for modes 0..n/2; compiled once per (kind, n, memory, material shape)."""
     modes = jnp.arange(n // 2 + 1, dtype=jnp.result_type(float))
     return R * element_symbol(kind, n, R, material.nu, ref_length, thickness) * effective_compliance(
         material, modes, omega, memory)
+
+
+_symbol = jax.jit(_symbol_fn, static_argnums=(0, 3, 5))
+_symbol_traced = jax.jit(_symbol_fn, static_argnums=(0, 3))
 
 
 def whirl_symbol(kind: str, material: Material, R, n: int, omega, whirl, ref_length=1.0, thickness=None):
