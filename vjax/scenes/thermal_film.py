@@ -9,13 +9,13 @@ Solve: rounds of T -> eta(T) -> the film's steady state (Newton from the last on
 sub-cell rupture on) -> the energy equation (a direct solve) -> T, mixed by Anderson's method
 over the last rounds: 15-30 rounds to 1e-9 K where the viscosity halves every 10-20 K. On a
 grid that nests (:func:`vjax.scenes.journal.finite.steady.nests`: 2048 cells and more) the
-rounds start from the coarser grid's thermal solution, film and temperatures refined, where
-the film's Newton has little left to do (128 x 32: 80 film steps over 20 rounds from the cold
-film; 27 over 16 from the 64 x 16 solution, whose own rounds cost a tenth as much). Each deformable body sits at the land's mean
-film temperature (area-weighted): a body's steady Green's function is that of a homogeneous
-body, so one temperature per body, the film's mean, is what the Fourier-space operator can
-hold (a liner's conductance is also far larger along it than across the film's variation).
-The bodies' hysteresis heat, small beside the film's shear, is spread evenly over the land.
+rounds start from the coarser grid's thermal solution refined (128 x 32: 80 film steps over
+20 rounds from the cold film; 27 over 16 from the 64 x 16 solution, whose rounds are cheap).
+Each deformable body sits at the land's mean film temperature (area-weighted): a body's
+steady Green's function is that of a homogeneous body, so one temperature per body is what
+the Fourier-space operator can hold (a liner's conductance is also far larger along it than
+across the film's variation). The bodies' hysteresis heat, small beside the film's shear, is
+spread evenly over the land.
 
 Derivatives are implicit (:func:`vjax._core.solve.implicit_root`) in the film's unknowns and
 the temperatures together: one GMRES solve of the coupled Jacobian, preconditioned by the
@@ -37,7 +37,7 @@ from ..materials.lubricant import as_lubricant
 from .journal.finite import setup as _finite_setup
 from .journal.finite.film import equations, fields, linear_model, solved_by_linear_model
 from .journal.finite.outputs import outputs
-from .journal.finite.steady import _coarse_options, _doubled, _refined, finite_journal_bearing, nests, solve as _finite_solve
+from .journal.finite import steady as _steady
 from .journal.options import FiniteJournalOptions
 from .thermal import MESSAGES, RUNAWAY, striated_fraction
 
@@ -69,9 +69,7 @@ class FilmHeat:
     T_limit: jax.Array = 250.0
 
     def __post_init__(self):
-        for name in ("T_supply", "T_limit"):
-            checks.finite(name, getattr(self, name))
-        for name in ("T_housing", "T_journal"):
+        for name in ("T_supply", "T_limit", "T_housing", "T_journal"):
             if getattr(self, name) is not None:
                 checks.finite(name, getattr(self, name))
         for name in ("bush", "journal"):
@@ -243,7 +241,7 @@ def _round(carry, params, st: _Static, shape):
     restarts the history."""
     x_good, T_rise, _, k, fails, (dT, dF, T_prev, F_prev) = carry
     pr, cfg = _film_params(T_rise, params, st)
-    x, stats = _finite_solve(dataclasses.replace(pr, x0=x_good), cfg, "polish")
+    x, stats = _steady.solve(dataclasses.replace(pr, x0=x_good), cfg, "polish")
     blocks, rhs, _ = _energy(x, T_rise, params, st, pr, cfg)
     T, F = T_rise.ravel(), energy.cyclic_block_solve(blocks, rhs).ravel() - T_rise.ravel()
     ok = (stats.result == _solve.SUCCESS) & jnp.all(jnp.isfinite(F))
@@ -403,28 +401,25 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
         x0 = jax.lax.stop_gradient(_finite_setup.start_from(initial.scene, pr0, cfg0))
         T0 = jax.lax.stop_gradient(initial.temperature - heat.T_supply)
         return _finish(x0, T0, params, st, shape, lubricant, heat, throw)
-    if nests(options) and checks.is_concrete(jax.tree_util.tree_leaves(params)):
-        # a fine grid starts from the coarser grid's thermal solution (the film and temperatures
-        # refined): its rounds then move the film little (at 128 x 32, 80 Newton steps over 20
-        # rounds from the cold film, most of them where the film heats and its cavity moves)
+    if _steady.nests(options) and checks.is_concrete(jax.tree_util.tree_leaves(params)):
+        # from the coarser grid's thermal solution, refined (module docs)
         coarse = thermal_film_bearing(R, radial_clearance, lubricant, load, heat, length=length, housing=housing,
                                       shaft=shaft, shift=shift, omega_shaft=omega_shaft, omega_housing=omega_housing,
                                       load_angle=load_angle, supply_angle=supply_angle, supply_width=supply_width,
-                                      cavitation=cavitation, options=_coarse_options(options), tol=tol,
+                                      cavitation=cavitation, options=_steady.coarse_options(options), tol=tol,
                                       max_iter=max_iter, relax=relax, throw=False)
         if bool(coarse.converged):
-            x0 = _refined(coarse.scene, pr0, cfg0)
             T0 = coarse.temperature - heat.T_supply
             while T0.shape[0] < shape[0]:
-                T0 = _doubled(T0)
-            return _finish(x0, jax.lax.stop_gradient(T0), params, st, shape, lubricant, heat, throw)
-    # the first round's start: the isothermal film at the supply temperature, and the energy
-    # equation's field there scaled to a mean-rise estimate (_first_temperatures)
+                T0 = _steady.doubled(T0)
+            return _finish(_steady.refined(coarse.scene, pr0, cfg0), jax.lax.stop_gradient(T0), params, st, shape,
+                           lubricant, heat, throw)
+    # else from the isothermal film at the supply temperature and a mean-rise estimate (_first_temperatures)
     at = dict(temperature=heat.T_supply, shift=shift) if st.deformable and shift is not None else {}
-    cold = finite_journal_bearing(R, radial_clearance, lubricant.viscosity(heat.T_supply), load, length,
-                                  housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
-                                  load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle,
-                                  supply_width=supply_width, options=options, throw=False, **at)
+    cold = _steady.finite_journal_bearing(
+        R, radial_clearance, lubricant.viscosity(heat.T_supply), load, length, housing=housing, shaft=shaft,
+        omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,
+        supply_angle=supply_angle, supply_width=supply_width, options=options, throw=False, **at)
     x0 = jax.lax.stop_gradient(_finite_setup.start_from(cold, pr0, cfg0))
     T0 = jax.lax.stop_gradient(_first_temperatures(x0, params, st, shape))
     return _finish(x0, T0, params, st, shape, lubricant, heat, throw)

@@ -85,7 +85,7 @@ Reynolds conditions a Newton that stalls restarts from the half-Sommerfeld solut
 starts from the Reynolds solution (:func:`.steady._jfo_steady`); soft bodies fall back on
 continuation in their compliance and the speed (:func:`.steady._steady`); cold solves on grids of
 NESTED_MIN_CELLS cells or more start from a coarser grid's solution
-(:func:`.steady._coarse_options`). Derivatives are implicit (:func:`vjax._core.solve.implicit_root`, the same linear solve and its transpose).
+(:func:`.steady.coarse_options`). Derivatives are implicit (:func:`vjax._core.solve.implicit_root`, the same linear solve and its transpose).
 Dynamic coefficients: :func:`impedance`, the cell equations linearized in the pressures and
 the journal's position (and tilt) and their rates, with the bodies by their whirl operators
 and a "jfo" cavity's fraction by its own dynamics; matrix-free, one GMRES solve per whirl

@@ -244,7 +244,7 @@ def _solved(pr: Params, cfg: Config):
 
 def _polished(pr: Params, cfg: Config):
     """The steady solve from a start near the root under Reynolds conditions (a coarser grid's
-    solution, :func:`_refined`): the last stage of :func:`_film_steady` alone, Newton with the
+    solution, :func:`refined`): the last stage of :func:`_film_steady` alone, Newton with the
     rupture within its cell; a program about a third smaller than :func:`_solved`'s, whose
     other stages such a start does not need (:func:`finite_journal_bearing` falls back to them
     if it fails)."""
@@ -262,7 +262,7 @@ _run_start = xla.jit(_solved, static_argnums=(1,), options=xla.START)
 NESTED_MIN_CELLS = 2048    # cold solves on n m >= this many cells start from a coarser grid's solution
 
 
-def _coarse_options(options: FiniteJournalOptions) -> FiniteJournalOptions:
+def coarse_options(options: FiniteJournalOptions) -> FiniteJournalOptions:
     """The grid a cold solve on a nesting grid (:func:`nests`) starts from: halved until it no
     longer nests (256 x 64 -> 64 x 16), so that one coarse program is compiled, not one per
     level (each is a whole Newton; its size hardly depends on the grid)."""
@@ -272,7 +272,7 @@ def _coarse_options(options: FiniteJournalOptions) -> FiniteJournalOptions:
 
 
 def nests(options: FiniteJournalOptions) -> bool:
-    """Whether a cold solve on this grid starts on a coarser one (:func:`_coarse_options`; its
+    """Whether a cold solve on this grid starts on a coarser one (:func:`coarse_options`; its
     nodes every 2nd, 4th, ... node of this one in theta and z, uniform or cosine spacing): on fine grids the rigid
     estimate is far from the root in Newton's terms (a 96 x 32 grid at eps = 0.8, L/D = 1:
     74 steps without converging directly, 9 on 48 x 16)."""
@@ -281,7 +281,7 @@ def nests(options: FiniteJournalOptions) -> bool:
 
 
 @partial(jax.jit, static_argnums=(2,))
-def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
+def refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
     """Unknowns on this grid from a solution on a 2^j x coarser one (the coarse nodes every
     2^j-th node here): at each doubling the new nodes get the mean of their two neighbours, in
     theta, then in z; NaN where the coarse solve failed (then the rigid estimate starts,
@@ -289,12 +289,12 @@ def _refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
     u = coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0)      # "jfo": the universal unknown
     asperity = coarse.asperity_pressure
     while u.shape[0] < cfg.n:
-        u, asperity = _doubled(u), _doubled(asperity)
+        u, asperity = doubled(u), doubled(asperity)
     x0 = as_unknowns(u, coarse.position, pr, cfg, asperity)
     return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
 
 
-def _doubled(u):
+def doubled(u):
     """Values on the nodes of the 2x finer grid (n, m + 1) -> (2 n, 2 m + 1): the new nodes the
     mean of their two neighbours, in theta, then in z."""
     u = jnp.stack([u, 0.5 * (u + jnp.roll(u, -1, axis=0))], axis=1).reshape(-1, u.shape[1])
@@ -331,8 +331,8 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
         pr = dataclasses.replace(pr, x0=start_from(initial, pr, cfg))
     elif nests(options):
         coarse = _run_start(*_prepared(R, radial_clearance, viscosity, load, length, arguments,
-                                       _coarse_options(options)))
-        pr = dataclasses.replace(pr, x0=_refined(coarse, pr, cfg))
+                                       coarse_options(options)))
+        pr = dataclasses.replace(pr, x0=refined(coarse, pr, cfg))
         # from the coarse solution Newton alone will do, in a smaller program (less to compile);
         # not inside a transformation (the fallback's choice needs concrete values), under JFO,
         # or where the coarse solve failed (then the rigid estimate starts, :func:`_run`)
