@@ -30,11 +30,10 @@ raises stops it (files are written atomically, so nothing half-written is left b
 The stages run side by side in ``--jobs`` worker processes (default: one per CPU), longest
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. A stage is XLA compiling its solvers (one core's
-work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). With
-``--no-cache`` the full run took 244 CPU-s (230 s wall on a 2-core machine shared with other
-jobs, calibration total (``experiments/benchmarks/calibrate.py``) 11.7 s right before it);
-before the per-stage flags, 281 CPU-s (151 s wall on the quiet machine at 5.7 s). Each stage
-alone, in the same hour: 368 -> 219 CPU-s (docs/benchmarks.md, "Main job (issue 42)").
+work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). The
+full run took 78.5 s wall (146 CPU-s) on a quiet 2-core machine whose calibration total
+(``experiments/benchmarks/calibrate.py``) was 5.0-5.3 s around it, from an empty cache or with
+``--no-cache`` alike (docs/benchmarks.md, "2026-11-28 (night ...)").
 """
 from __future__ import annotations
 

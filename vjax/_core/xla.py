@@ -4,11 +4,11 @@ Most of a scene's first call is XLA compiling its solver: a whole damped Newton 
 equations, their block Jacobian and its factorization in one program. On the CPU backend the
 options below compile such programs much faster, to the same results up to round-off
 (measurements in docs/benchmarks.md: a rigid finite bearing on 256 x 64, its two Newton
-programs, 7.7 s of XLA at the defaults, 3.2 s with these):
+programs, 7.1 s of XLA at the defaults, 2.6 s with these and a smaller fine-grid program):
 
 - ``xla_cpu_use_fusion_emitters=False``: XLA:CPU's classic loop emitters in place of the
   MLIR fusion emitters (about 1.5x faster to compile for these programs; as fast to run,
-  the long JFO bearing's 15 % slower);
+  the long JFO bearing's ~10 % slower);
 - ``xla_backend_optimization_level=1`` (:data:`CLASSIC`): faster to compile than the default
   level, as fast to run for these loops of small dense steps;
 - ``xla_backend_optimization_level=0`` (:data:`START`) for programs that run briefly (a coarse
