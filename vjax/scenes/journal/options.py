@@ -62,9 +62,9 @@ class FiniteJournalOptions:
     ``max_iter`` Newton steps, ``nested``: whether a cold solve on a grid of at least 2048 cells
     starts from a coarser grid's solution (True; False: from the rigid estimate, where a coarse
     grid cannot carry the load: a soft body's thin film), and, with deformable bodies, the
-    ``linear_solver`` of each Newton
-    step, of the implicit derivatives and of the dynamic coefficients' whirl solves: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m -
-    1) cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
+    ``linear_solver`` of each Newton step, of the implicit derivatives and of the dynamic
+    coefficients' whirl solves: "dense" (LU of the AD Jacobian, O(N^3) for N = n (m - 1)
+    cells), "krylov" (matrix-free GMRES, O(N log N) per product, preconditioned by the film's
     block-tridiagonal Jacobian with each node's own compliance: :func:`linear_model`) or "auto"
     (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: the exact block solve, or GMRES with a
     multigrid V-cycle on grids wider than EXACT_WIDTH cells (:func:`linear_model`). The default
