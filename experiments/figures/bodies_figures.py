@@ -114,7 +114,7 @@ def water_journal(out, quick):
     for name, body in bodies.items():
         prev, vals = None, []
         for w in speeds:
-            if len(vals) >= GIVE_UP and not any(v[4] for v in vals):
+            if len(vals) >= GIVE_UP and not any(v[4] > 0 for v in vals):
                 vals.append((np.nan,) * 4 + (-1,))        # not tried: the sweep has failed from its start
                 continue
             s = vjax.journal_bearing(JR, JC, WATER, JLOAD, housing=body, omega_shaft=w, initial=prev,
