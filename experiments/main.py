@@ -31,9 +31,9 @@ The stages run side by side in ``--jobs`` worker processes (default: one per CPU
 first, each printing its lines prefixed with its name; they share vjax's persistent
 compilation cache unless ``--no-cache``. A stage is XLA compiling its solvers (one core's
 work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). The
-full run took 78.5 s wall (146 CPU-s) on a quiet 2-core machine whose calibration total
-(``experiments/benchmarks/calibrate.py``) was 5.0-5.3 s around it, from an empty cache or with
-``--no-cache`` alike (docs/benchmarks.md, "2026-11-28 (night ...)").
+full run took 76.5 s wall (140 CPU-s) from an empty cache on a quiet 2-core machine whose
+calibration total (``experiments/benchmarks/calibrate.py``) was 5.2-5.4 s around it
+(docs/benchmarks.md, "2026-11-28 (night ...)").
 """
 from __future__ import annotations
 
