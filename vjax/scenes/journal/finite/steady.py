@@ -224,7 +224,8 @@ def solve(pr: Params, cfg: Config, start: str = "given") -> tuple[jax.Array, _so
     """The converged unknowns x (implicitly differentiable) and the Newton record; ``start``:
     "given" (Newton from ``pr.x0``), "guess" (from the rigid estimate, :func:`_guess`),
     "given_or_guess" (``pr.x0`` unless it is not finite: a coarse grid's failed solve) or
-    "polish" (Reynolds conditions: one Newton from ``pr.x0``, the sub-cell rupture on, no fallback)."""
+    "polish" (one Newton from ``pr.x0``, under Reynolds conditions with the sub-cell rupture on, no
+    fallback: a start near the root, a coarser grid's solution or a thermal round's last film)."""
     if start in ("guess", "given_or_guess"):
         guess = jax.lax.stop_gradient(_guess(pr, cfg))
         x0 = guess if start == "guess" else jnp.where(jnp.all(jnp.isfinite(pr.x0)), pr.x0, guess)
