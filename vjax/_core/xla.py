@@ -25,6 +25,8 @@ import os
 
 import jax
 
+from .checks import is_concrete
+
 CLASSIC = {"xla_cpu_use_fusion_emitters": False, "xla_backend_optimization_level": 1}   # solver programs
 START = {**CLASSIC, "xla_backend_optimization_level": 0}     # a start's program: runs briefly
 
@@ -62,8 +64,7 @@ def jit(fun=None, *, options=CLASSIC, **jit_kwargs):
     def choose(args, kwargs):
         # inside another transformation (jit, grad, vmap) the program is the caller's: JAX takes
         # compiler options only on a top-level jit
-        traced = any(isinstance(leaf, jax.core.Tracer) for leaf in jax.tree_util.tree_leaves((args, kwargs)))
-        return plain if traced else compiled()
+        return compiled() if is_concrete((args, kwargs)) else plain
 
     @functools.wraps(fun)
     def call(*args, **kwargs):

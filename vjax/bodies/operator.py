@@ -47,7 +47,7 @@ def memory_revolutions(memory) -> float:
     """Number of revolutions of load history: inf for "periodic", 1 for "thesis". A traced
     number (revolutions, inf for periodic) is returned as it is: a program that takes the
     memory as an argument serves every memory model (:func:`effective_compliance`)."""
-    if isinstance(memory, jax.core.Tracer):
+    if not checks.is_concrete(memory):
         return memory
     if isinstance(memory, str):
         checks.one_of("memory", memory, ("periodic", "thesis"))
@@ -70,7 +70,7 @@ def effective_compliance(material: Material, modes, omega, memory="periodic"):
         return jnp.broadcast_to(1.0 / material.E0, modes.shape)
     m = memory_revolutions(memory)
     periodic = lambda: material.compliance(-modes * omega)     # noqa: E731
-    if not isinstance(m, jax.core.Tracer):
+    if checks.is_concrete(m):
         return periodic() if np.isinf(m) else _truncated(material, modes, omega, m)
     # the truncated branch at a finite m whatever m is, so that its derivatives stay finite
     return jax.lax.cond(jnp.isinf(m), periodic,
@@ -190,7 +190,7 @@ def ring_operator(kind: str, material: Material, R, n: int, omega=0.0, memory="p
     m = memory_revolutions(memory)
     # a concrete memory is static (a program holds its own model); a traced one (revolutions,
     # inf: periodic) serves every model in one program (:func:`effective_compliance`)
-    symbol = _symbol_traced if isinstance(m, jax.core.Tracer) else _symbol
+    symbol = _symbol if checks.is_concrete(m) else _symbol_traced
     return RingOperator(symbol(kind, material, R, int(n), omega, m, ref_length, thickness), int(n))
 
 
