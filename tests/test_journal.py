@@ -14,6 +14,8 @@ import pytest
 import vjax
 from vjax import JournalOptions, journal_bearing, reference
 
+from float32 import run_in_float32
+
 # A rigid bearing: R = 50 mm, c = 50 um, eta = 0.01 Pa s, journal at 100 rad/s.
 R, C, ETA, WJ = 0.05, 5e-5, 0.01, 100.0
 V = 0.5 * WJ * (R - C)  # entrainment speed
@@ -348,21 +350,14 @@ def test_options_validate_themselves(kwargs, name):
 def test_float32_runs_without_nan():
     """vjax does not force float64: in float32 the solves converge to the looser default
     tolerance (1e-4) and nothing is NaN (run in a fresh interpreter without x64)."""
-    import subprocess
-    import sys
-    import textwrap
-    code = textwrap.dedent("""
-        import warnings; warnings.simplefilter("ignore")
-        import dataclasses, jax, numpy as np, vjax
+    run_in_float32("""
+        import dataclasses, vjax
         m = vjax.Material.sls(1e6, 1e8, 1.0, 0.5)
         for args, kw in (((0.05, 5e-5, 0.01, 2e5), dict(omega_shaft=100.0)),
                          ((0.1, 5e-4, 1e-3, 220.0), dict(omega_shaft=-0.4, omega_housing=0.2, housing=m))):
             s = vjax.journal_bearing(*args, options=vjax.JournalOptions(n=32), throw=False, **kw)
             assert float(s.film_parameter) == np.inf      # h_min / sigma of smooth surfaces
-            s = dataclasses.replace(s, film_parameter=s.min_film)
-            leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
-            assert s.pressure.dtype == np.float32, s.pressure.dtype
-            assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
+            check(dataclasses.replace(s, film_parameter=s.min_film))
         # the finite bearing, tilted; and with a polymer liner and the mass-conserving film (one
         # interpreter for all: each costs a JAX import)
         liner = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
@@ -370,14 +365,6 @@ def test_float32_runs_without_nan():
             s = vjax.journal_bearing(0.05, 5e-5, 0.01, 2000.0, omega_shaft=100.0, length=0.1,
                                      options=vjax.FiniteJournalOptions(n=16, m=4), throw=False, **kw)
             assert float(s.film_parameter) == np.inf      # h_min / sigma of smooth surfaces
-            s = dataclasses.replace(s, film_parameter=s.min_film)
-            leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
-            assert s.pressure.dtype == np.float32, s.pressure.dtype
-            assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
+            check(dataclasses.replace(s, film_parameter=s.min_film))
         print("ok")
     """)
-    import os
-    env = dict(os.environ, JAX_ENABLE_X64="0")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
-                         cwd=str(__import__("pathlib").Path(__file__).resolve().parents[1]), timeout=300)
-    assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]

@@ -14,6 +14,8 @@ import pytest
 
 import vjax
 
+from float32 import run_in_float32
+
 R, C, ETA = 25.05e-3, 50e-6, 0.03
 W = 2000.0 / (2 * R)                      # N/m
 ROUGH = vjax.Roughness.from_surfaces(0.0, 1e-6, 210e9, 0.3, 3e9, 0.4)
@@ -317,28 +319,15 @@ def test_float32_runs_without_nan():
     """In float32 the rough long bearing, rigid and lined, converges (to the looser default
     tolerance) from mixed film to nearly boundary, and nothing is NaN or inf (a fresh interpreter
     without x64)."""
-    import os
-    import pathlib
-    import subprocess
-    import sys
-    import textwrap
-    code = textwrap.dedent("""
-        import warnings; warnings.simplefilter("ignore")
-        import jax, numpy as np, vjax
+    run_in_float32("""
+        import vjax
         rough = vjax.Roughness.from_surfaces(0.0, 1e-6, 210e9, 0.3, 3e9, 0.4)
         liner = vjax.liner(vjax.Material.sls(1.5e9, 3e9, 0.01, 0.4), 2e-3)
         for w, kw in ((1.0, {}), (0.01, {}), (0.3, dict(housing=liner))):
-            s = vjax.journal_bearing(25.05e-3, 50e-6, 0.03, 39920.0, omega_shaft=w, roughness=rough,
-                                     options=vjax.JournalOptions(n=32), throw=False, **kw)
-            leaves = [np.asarray(l, dtype=float) for l in jax.tree_util.tree_leaves(s)]
-            assert s.pressure.dtype == np.float32, s.pressure.dtype
-            assert bool(s.converged) and all(np.all(np.isfinite(l)) for l in leaves)
+            check(vjax.journal_bearing(25.05e-3, 50e-6, 0.03, 39920.0, omega_shaft=w, roughness=rough,
+                                       options=vjax.JournalOptions(n=32), throw=False, **kw))
         print("ok")
     """)
-    env = dict(os.environ, JAX_ENABLE_X64="0")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
-                         cwd=str(pathlib.Path(__file__).resolve().parents[1]), timeout=300)
-    assert out.returncode == 0 and "ok" in out.stdout, out.stderr[-2000:]
 
 
 def test_a_closing_smooth_film_says_a_roughness_would_carry_it():
