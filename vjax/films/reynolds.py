@@ -172,11 +172,11 @@ def rupture_outflow(p_scaled, couette_outflow, v, axis=0):
 def cell_equations(p_scaled, q, q_ref, cavitation, squeeze=0.0, couette=None, v=0.0, subcell=1.0):
     """Mass balance of each cell, scaled to O(1) per unit angle by ``q_ref`` (m^2/s, a number or
     one per cell); complementarity with the (scaled) pressure under Reynolds conditions.
-    ``squeeze``: R dh/dt at the cell centres (m^2/s per radian), the film's own growth, which the net outflow must supply (the
-    unsteady term of d/ds(h^3/(12 eta) dp/ds) = v dh/ds + dh/dt). ``couette``: the faces'
-    Couette fluxes (m^2/s) at entrainment speed ``v``; under Reynolds conditions the rupture
-    is then located within its cell (:func:`rupture_outflow`), times ``subcell`` (0: on a
-    face, the solvers' first stage)."""
+    ``squeeze``: R dh/dt at the cell centres (m^2/s per radian), the film's own growth, which
+    the net outflow must supply (the unsteady term of d/ds(h^3/(12 eta) dp/ds) = v dh/ds +
+    dh/dt). ``couette``: the faces' Couette fluxes (m^2/s) at entrainment speed ``v``; under
+    Reynolds conditions the rupture is then located within its cell (:func:`rupture_outflow`),
+    times ``subcell`` (0: on a face, the solvers' first stage)."""
     dth = 2 * jnp.pi / q.shape[0]
     w = (q - jnp.roll(q, 1)) / (q_ref * dth) + squeeze / q_ref
     if cavitation != "reynolds":

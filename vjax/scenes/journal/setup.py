@@ -1,5 +1,6 @@
 """What the long and the finite journal bearing share in their set-up: the checks of the
-arguments both take, and the bodies (checked, fitted to their radii, at their temperature)."""
+arguments both take, the bodies (checked, fitted to their radii, at their temperature), and
+the closing sentence of a smooth film's failure where roughness would carry the load."""
 from __future__ import annotations
 
 import numpy as np
@@ -42,3 +43,12 @@ def bodies_at(R, radial_clearance, housing, shaft, temperature, shift):
     check_fits("housing", housing, R)
     check_fits("shaft", shaft, R - radial_clearance)
     return _scene.at_temperature(temperature, shift, housing, shaft)
+
+
+def roughness_hint(thin: float) -> str:
+    """The closing sentence of a smooth bearing's failure whose film would have to be ``thin``
+    (a fraction of the clearance) to carry the load: rough surfaces let the asperities carry
+    their share (mixed lubrication)."""
+    return (f" A film of ~{thin:.2g} c would carry this load: with smooth surfaces it must carry all of it; give "
+            f"the surfaces' roughness (roughness=vjax.Roughness(...)) and the asperities carry their share (mixed "
+            f"lubrication).")

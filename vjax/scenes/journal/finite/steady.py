@@ -17,6 +17,7 @@ from .... import reference
 from ....bodies.operator import grid
 from ....films import film2d, reynolds
 from ..options import FiniteJournalOptions
+from ..setup import roughness_hint
 from .film import (Config, Params, as_unknowns, asperity_unknowns, equations, fields, is_rigid, linear_model, own_nodes,
                    own_columns,
                    solved_by_linear_model, unknowns)
@@ -372,6 +373,4 @@ def _thin_film_hint(sol: FiniteJournalResult, pr: Params) -> str:
     thin = gaps[np.argmax(short)]
     if not short.any() or thin >= 0.05:
         return ""
-    return (f" A film of ~{thin:.2g} c would carry this load: with smooth surfaces it must carry all of it; give "
-            f"the surfaces' roughness (roughness=vjax.Roughness(...)) and the asperities carry their share (mixed "
-            f"lubrication).")
+    return roughness_hint(thin)

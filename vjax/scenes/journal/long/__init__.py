@@ -92,7 +92,8 @@ Per unit length as everything here; docs/theory.md §18.2. Not with ``cavitation
 Solver
 ------
 Unknowns p/p_ref (n values), eps, attitude (and the asperity pressures, see above): n + 2
-equations (cell balances / FB, groove datum, two force components; and p_a - p_a(h) per cell). The core's damped Newton (:func:`vjax._core.solve.newton`; steps
+equations (cell balances / FB, groove datum, two force components; and p_a - p_a(h) per
+cell). The core's damped Newton (:func:`vjax._core.solve.newton`; steps
 giving h <= 0 are rejected), each step solved (``options.linear_solver``) with the exact
 dense AD Jacobian (LU, O(n^3)) or matrix-free by GMRES (Jacobian-vector products,
 O(n log n)) preconditioned by the film's cyclic tridiagonal Jacobian plus the bodies' compliance on

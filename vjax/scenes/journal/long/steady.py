@@ -15,6 +15,7 @@ from .... import reference
 from ....bodies.operator import RingOperator
 from ....films import reynolds
 from ..options import JournalOptions
+from ..setup import roughness_hint
 from . import film
 from .outputs import JournalResult, outputs
 
@@ -186,9 +187,7 @@ def _roughness_hint(pr: film.Params) -> str:
     thin = 1.0 / (3.0 * float(film.load_number(pr)))
     if thin >= 0.01:
         return ""
-    return (f" A film of ~{thin:.1e} c would carry this load: with smooth surfaces it must carry all of it; give "
-            f"the surfaces' roughness (roughness=vjax.Roughness(...)) and the asperities carry their share (mixed "
-            f"lubrication).")
+    return roughness_hint(thin)
 
 
 def _failure_hint(pr: film.Params, n: int) -> str:
