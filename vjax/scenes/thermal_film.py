@@ -401,7 +401,7 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
         x0 = jax.lax.stop_gradient(_finite_setup.start_from(initial.scene, pr0, cfg0))
         T0 = jax.lax.stop_gradient(initial.temperature - heat.T_supply)
         return _finish(x0, T0, params, st, shape, lubricant, heat, throw)
-    if _steady.nests(options) and checks.is_concrete(jax.tree_util.tree_leaves(params)):
+    if _steady.nests(options) and checks.is_concrete(params):
         # from the coarser grid's thermal solution, refined (module docs)
         coarse = thermal_film_bearing(R, radial_clearance, lubricant, load, heat, length=length, housing=housing,
                                       shaft=shaft, shift=shift, omega_shaft=omega_shaft, omega_housing=omega_housing,

@@ -338,7 +338,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
         # from the coarse solution Newton alone will do, in a smaller program (less to compile);
         # not inside a transformation (the fallback's choice needs concrete values), under JFO,
         # or where the coarse solve failed (then the rigid estimate starts, :func:`_run`)
-        if (cfg.cavitation == "reynolds" and checks.is_concrete(jax.tree_util.tree_leaves(pr))
+        if (cfg.cavitation == "reynolds" and checks.is_concrete(pr)
                 and bool(coarse.converged)):
             sol = _run_polish(pr, cfg)
             if bool(sol.converged):
