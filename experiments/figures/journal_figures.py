@@ -124,7 +124,7 @@ def starts(n):
 
 
 def fig_3_4(out, n, cases):
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
     ax2 = ax.twinx()
     styles = {"circular": "-", "half-plane (l = 1 m)": "--", "half-plane (l = R_B)": ":"}
     th = _deg(cases["circular"].theta)
@@ -154,8 +154,7 @@ def fig_3_4(out, n, cases):
 def fig_3_5_3_6(out, n, hs):
     sols = {(cfg, mem): hs[mem] if cfg == "HS" else _solve(n, memory=mem, initial=hs[mem], **kw)
             for cfg, kw in CONFIGS.items() for mem in MEMORIES}
-    fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(14, 7), sharex=True)
-    fig.subplots_adjust(wspace=0.45)
+    fig, axes = plt.subplots(len(MEMORIES), 3, figsize=(14, 7), sharex=True, layout="constrained")
     rows = []
     for i, mem in enumerate(MEMORIES):
         for j, cfg in enumerate(CONFIGS):
@@ -188,7 +187,8 @@ def fig_3_5_3_6(out, n, hs):
     # e cos(theta - gamma) - u_J (to first order in e/R_B); dashed: undeformed. Right: the film
     # and pressure of both memory models against the angle.
     K = 50.0
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.5), gridspec_kw=dict(width_ratios=(1, 1.3)))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 5.5), gridspec_kw=dict(width_ratios=(1, 1.3)),
+                                   layout="constrained")
     s = sols[("SS", "periodic")]
     gamma = float(s.line_of_centres_angle)
     th = np.asarray(s.theta)
@@ -223,7 +223,6 @@ def fig_3_5_3_6(out, n, hs):
     ax3.legend(fontsize=7, loc="upper right")
     fig.suptitle(f"Fig. 3.6: soft-on-soft (SS) journal bearing, {CASE};\nred arrow: fluid force on the journal",
                  fontsize=9)
-    fig.tight_layout()
     _common.save_figure(fig, out / "fig3_6_ss_contours.png")
     return {f"{cfg}/{mem}": _row(s) for (cfg, mem), s in sols.items()}
 
@@ -246,7 +245,7 @@ def fig_3_7_3_8(out, n, speeds, hs):
             table[(mem, wj)] = _row(s)
             profiles[(mem, wj)] = s
     show = [speeds[0], speeds[len(speeds) // 3], speeds[2 * len(speeds) // 3], speeds[-1]]
-    fig, axes = plt.subplots(len(MEMORIES), 1, figsize=(8, 7), sharex=True)
+    fig, axes = plt.subplots(len(MEMORIES), 1, figsize=(8, 7), sharex=True, layout="constrained")
     rows = []
     for ax, mem in zip(axes, MEMORIES):
         ax2 = ax.twinx()
@@ -269,7 +268,7 @@ def fig_3_7_3_8(out, n, speeds, hs):
     _common.write_csv(out / "journal_fig3_7.csv", ["memory", "omega_J_tilde", "theta_deg", "h_over_c",
                                                    "p_over_E0"], rows, comments=[f"Fig. 3.7, HS, n={n}"])
 
-    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 8), sharex=True, layout="constrained")
     axr = ax.twinx()
     bxr = bx.twinx()
     w = np.abs(np.asarray(speeds))
@@ -380,8 +379,7 @@ def finite_length(out, grid):
             released = float(np.sum(np.asarray(s.pressure)[:, 1:-1] * np.asarray(outflow)))
             balance[name] = abs(power_in + released - (float(s.power_loss) - WB * float(s.torque_viscoelastic))) \
                 / abs(power_in)
-    fig, axes = plt.subplots(1, 4, figsize=(21, 4.2))
-    fig.subplots_adjust(wspace=0.45)
+    fig, axes = plt.subplots(1, 4, figsize=(21, 4.2), layout="constrained")
     for name, s in sols.items():
         h = np.asarray(s.film)
         mid = h if h.ndim == 1 else h[:, h.shape[1] // 2]

@@ -86,7 +86,7 @@ def main(out_dir="experiments/out", quick=False, folder="stribeck"):
     header = ("omega (rad/s)", "Hersey", "mu rigid", "share rigid", "eps rigid", "mu lined", "share lined",
               "eps lined", "mu smooth")
     _common.write_csv(out / "stribeck.csv", header, rows)
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     for curve, label, style in ((rigid, "rough, rigid bush", "o-"), (lined, "rough, 2 mm polymer liner", "s-")):
         a.loglog(curve.hersey, curve.friction_coefficient, style, label=label)
         b.semilogx(curve.hersey, curve.asperity_share, style, label=label)

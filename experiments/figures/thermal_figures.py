@@ -91,7 +91,7 @@ def speed_figure(out, quick=False):
     _common.write_csv(out / "thermal_speed.csv", header, rows,
                       comments=[f"mu = power / (W U), U = omega R; W = {W:g} N, hA = {HA:g} W/K, supply {T_IN:g} C"])
 
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2), layout="constrained")
     a.plot(rpm, T_hot, "o-", label="thermal: T_eff")
     a.plot(rpm, f(hot, "outlet_temperature"), "s--", label="thermal: T_out")
     a.axhline(T_IN, color="k", ls=":", label="isothermal (supply, 40 C)")
@@ -103,7 +103,6 @@ def speed_figure(out, quick=False):
         ax.set_xticks(rpm, [f"{n:g}" for n in rpm], minor=False)
         ax.set_xticks([], minor=True)
         ax.legend(fontsize=8)
-    fig.subplots_adjust(wspace=0.3)
     fig.suptitle(f"VG 32, 2 mm polymer liner, L/D = 0.5, c = 75 um, {W / 1e3:g} kN: isothermal against "
                  f"ISO 7902 effective temperature (hA = {HA:g} W/K)", fontsize=9)
     _common.save_figure(fig, out / "thermal_speed.png")

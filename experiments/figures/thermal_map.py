@@ -44,7 +44,7 @@ def solve(heat):
 def temperature_map(out):
     """Draw ``thermal_map.png`` and write ``thermal_map.csv`` into ``out``; returns (text, checks)."""
     results = [(name, solve(heat)) for name, heat in HEATS]
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.4), sharey=True)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.4), sharey=True, layout="constrained")
     lo = 40.0
     hi = max(float(r.max_temperature) for _, r in results)
     for ax, (name, r) in zip(axes, results):
