@@ -26,11 +26,17 @@ def bearing(heat, L=0.1, load=1e6 * 0.1 * 0.1, oil=OIL, n=32, m=8, **kw):
                                      **speeds, **kw)
 
 
-def test_cyclic_block_solve_is_a_dense_solve():
+@pytest.mark.parametrize("flow", ["both ways", "+theta", "-theta"])
+def test_cyclic_block_solve_is_a_dense_solve(flow):
+    """Lines coupled to both neighbours (the block Thomas sweep, dense blocks), or to the upwind
+    one only (the recurrence round the ring, the operator's tridiagonal blocks)."""
     rng = np.random.default_rng(0)
     n, k = 7, 4
     lower, upper = -rng.uniform(0, 1, (n, k)), -rng.uniform(0, 1, (n, k))
     blocks = rng.uniform(-0.3, 0.3, (n, k, k)) + np.eye(k) * (3 + rng.uniform(0, 1, (n, 1, 1)))
+    if flow != "both ways":
+        blocks = blocks * (np.abs(np.subtract.outer(np.arange(k), np.arange(k))) <= 1)
+        (upper if flow == "+theta" else lower)[:] = 0.0
     A = np.zeros((n * k, n * k))
     for i in range(n):
         A[i * k:(i + 1) * k, i * k:(i + 1) * k] = blocks[i]

@@ -9,8 +9,8 @@ Solve: rounds of T -> eta(T) -> the film's steady state (Newton from the last on
 sub-cell rupture on) -> the energy equation (a direct solve) -> T, mixed by Anderson's method
 over the last rounds: 15-30 rounds to 1e-9 K where the viscosity halves every 10-20 K. On a
 grid that nests (:func:`vjax.scenes.journal.finite.steady.nests`: 2048 cells and more) the
-rounds start from the coarser grid's thermal solution refined (128 x 32: 80 film steps over
-20 rounds from the cold film; 27 over 16 from the 64 x 16 solution, whose rounds are cheap).
+rounds start from the coarser grid's thermal solution (to 1e-6 K: a start) refined (128 x 32:
+20 rounds from the cold film, 16 from the 64 x 16 solution, whose rounds are cheap).
 Each deformable body sits at the land's mean film temperature (area-weighted): a body's
 steady Green's function is that of a homogeneous body, so one temperature per body is what
 the Fourier-space operator can hold (a liner's conductance is also far larger along it than
@@ -31,7 +31,6 @@ import jax.numpy as jnp
 import numpy as np
 
 from .._core import checks, krylov, scene as _scene, solve as _solve, xla
-from .._core.solve import ConvergenceError
 from ..films import energy, film2d
 from ..materials.lubricant import as_lubricant
 from .journal.finite import setup as _finite_setup
@@ -45,6 +44,7 @@ GMRES_TOL = 1e-13
 FULL = 1e-3          # a node with p below FULL p_max is partly cavitated (:func:`_energy`)
 ANDERSON = 5         # rounds in Anderson's mixing
 MAX_FAILS = 6        # failed films in a row before the solve gives up
+COARSE_TOL = 1e-6    # K: a nesting grid's coarse rounds are a start, off by the grids' difference (~0.1 K)
 
 
 @jax.tree_util.register_dataclass
@@ -406,8 +406,8 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
         coarse = thermal_film_bearing(R, radial_clearance, lubricant, load, heat, length=length, housing=housing,
                                       shaft=shaft, shift=shift, omega_shaft=omega_shaft, omega_housing=omega_housing,
                                       load_angle=load_angle, supply_angle=supply_angle, supply_width=supply_width,
-                                      cavitation=cavitation, options=_steady.coarse_options(options), tol=tol,
-                                      max_iter=max_iter, relax=relax, throw=False)
+                                      cavitation=cavitation, options=_steady.coarse_options(options),
+                                      tol=max(st.tol, COARSE_TOL), max_iter=max_iter, relax=relax, throw=False)
         if bool(coarse.converged):
             T0 = coarse.temperature - heat.T_supply
             while T0.shape[0] < shape[0]:
@@ -492,7 +492,7 @@ def _report(out: FilmTemperatureResult, T_limit, throw):
     def raise_(*a):
         message = _message(*a)
         if message is not None:
-            raise ConvergenceError(message, out if checks.is_concrete(out.result) else None)
+            raise _solve.ConvergenceError(message, out if checks.is_concrete(out.result) else None)
 
     if checks.is_concrete(args):
         raise_(*args)
