@@ -50,6 +50,21 @@ def test_kept_jacobian_at_the_root_needs_no_recomputation():
                                rtol=1e-14)
 
 
+def test_keep_jacobian_false_is_exact_newton_in_the_kept_mode_program():
+    """keep_jacobian=False (traced) ignores the Jacobian handed in: every iterate is exact
+    Newton's (a cold start in the warm start's program); True with the same program keeps it."""
+    x0 = jnp.array([0.3, -0.4, 0.2])
+    J_far = jax.jacfwd(lambda x: equations(x, 0)[0])(jnp.array([1.0, 1.0, 1.0]))
+    run = jax.jit(lambda keep, steps: [_solve.newton(equations, x0, 0, tol=1e-13, max_iter=k, jacobian=J_far,
+                                                     keep_jacobian=keep)[0] for k in steps], static_argnums=1)
+    steps = (1, 2, 3)
+    exact = [_solve.newton(equations, x0, 0, tol=1e-13, max_iter=k)[0] for k in steps]
+    for a, b in zip(run(jnp.asarray(False), steps), exact):
+        np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=1e-14, atol=1e-15)
+    kept = run(jnp.asarray(True), steps)[0]
+    assert float(jnp.max(jnp.abs(kept - exact[0]))) > 1e-3      # the kept Jacobian's first step differs
+
+
 def test_a_step_that_fails_with_a_fresh_jacobian_is_reported_stalled():
     """Equations with no root (r = x^2 + 1): the retry rule must not hide a true stall."""
     no_root = lambda x, s: (x ** 2 + 1.0, s, jnp.asarray(True))

@@ -95,7 +95,7 @@ def report(what: str, stats: Stats, throw: bool, hint: str = "") -> None:
 
 
 def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, linear_solve=None,
-           jacobian=None, return_jacobian=False, stall_window=None):
+           jacobian=None, keep_jacobian=True, return_jacobian=False, stall_window=None):
     """Damped Newton on ``fn(x, state) -> (r, state, valid)`` with an exact (``jacfwd``) Jacobian,
     or with ``linear_solve(x, state, r) -> dx`` solving J dx = -r (a matrix-free Krylov solve).
 
@@ -114,6 +114,8 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     superlinear near the root); otherwise it recomputes it at the current point. A step that
     fails with a kept Jacobian is retried with a fresh one, not reported as stalled. (Under
     ``vmap`` both branches of that choice run: continuation belongs in a loop or ``scan``.)
+    ``keep_jacobian`` (a traced bool): False ignores ``jacobian`` and takes exact Newton steps
+    throughout, so that a cold start and a warm one share one compiled program.
 
     ``stall_window``: stop as STALLED when ``max|r|`` has not halved in this many steps (a
     semismooth Newton caught on a complementarity kink takes tiny accepted steps for as long
@@ -189,7 +191,7 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
             s_ = lam * dx
             J = jnp.where(ok, J + jnp.outer(rt - r - J @ s_, s_) / jnp.maximum(s_ @ s_, jnp.finfo(r.dtype).tiny), J)
             reduced = jnp.max(jnp.abs(rt)) <= 0.25 * jnp.max(jnp.abs(r))
-            out += (J, ok & (lam == 1.0) & reduced)
+            out += (J, keep_jacobian & ok & (lam == 1.0) & reduced)
         elif carry:
             out += (J, jnp.asarray(False))
         return out
@@ -206,7 +208,7 @@ def newton(fn, x0, state0, *, tol, max_iter, max_step=None, max_halvings=30, lin
     init = (0, x0, r0, s0, result0)
     if carry:
         J0 = jnp.zeros((r0.shape[0], x0.shape[0]), r0.dtype) if jacobian is None else jnp.asarray(jacobian, r0.dtype)
-        init += (J0, jnp.asarray(reuse))
+        init += (J0, jnp.asarray(reuse) & keep_jacobian)
     if stall_window is not None:
         init += (jnp.max(jnp.abs(r0)), 0)
     k, x, r, state, result, *kept = jax.lax.while_loop(cond, body if stall_window is None else body_with_stall, init)

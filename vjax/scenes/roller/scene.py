@@ -228,23 +228,29 @@ def _outputs(x, P, cfg, warm, stats, speeds, jacobian):
 @partial(jax.jit, static_argnums=(3, 4))
 def _solve_bearing(P, start, speeds, cfg, options):
     """Newton at the root with implicit derivatives, then the outputs (compiled once per config)."""
-    def solver(prm):
+    def solver(params):
+        prm, start = params
+
         def equations(x, warm):
             r, (out, *_) = balance.equations(x, prm, cfg, warm)
             return r, balance.pressures(out, cfg.n, x.dtype), balance.contacts_converged(out)
 
-        if start is None:   # exact Newton
-            x0, p0, J0 = balance.initial_guess(prm, cfg), jnp.zeros((2, cfg.n), prm.R_O.dtype), None
-        else:  # continuation from a nearby solution (a starting point only): Jacobians kept
-            x0, p0, J0 = jax.lax.stop_gradient(start)
+        # from a nearby solution (a starting point only), Jacobians kept; a start that is not
+        # finite (a cold start: NaN) is an exact Newton from the initial guess, in the same program
+        x0, p0, J0 = jax.lax.stop_gradient(start)
+        warm_start = jnp.all(jnp.isfinite(x0))
+        x0 = jnp.where(warm_start, x0, balance.initial_guess(prm, cfg))
+        p0, J0 = jnp.where(warm_start, p0, 0.0), jnp.where(warm_start, J0, 0.0)
         x, warm, stats, J = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
                                           max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0,
-                                          return_jacobian=True)
+                                          keep_jacobian=warm_start, return_jacobian=True)
         return x, (warm, stats, J)
 
     # the derivative's contact solves start from the converged pressures
-    residual = lambda x, aux, prm: balance.equations(x, prm, cfg, aux[0])[0]
-    x, (warm, stats, J) = _solve.implicit_root(solver, residual)(P)
+    # (the start rides in the parameters, with no part in the residual: a closure over it would
+    # leak its tracer out of implicit_root's custom_jvp under linearize)
+    residual = lambda x, aux, params: balance.equations(x, params[0], cfg, aux[0])[0]
+    x, (warm, stats, J) = _solve.implicit_root(solver, residual)((P, start))
     return _outputs(x, P, cfg, warm, stats, speeds, J)
 
 
@@ -274,7 +280,9 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
         ``shift`` (:meth:`~vjax.Material.at_temperature`; both or neither).
       initial: a :class:`RollerResult` of the same bearing at nearby parameters (e.g. the
         previous speed of a sweep): Newton starts from its deflections and the contact
-        solves from its pressures. Only the speed of convergence depends on it.
+        solves from its pressures. Only the speed of convergence depends on it. A result whose
+        deflections are not finite (NaN) starts cold, in the same compiled program (the first
+        point of a ``lax.scan`` sweep).
       options: :class:`RollerOptions` (grid, Newton tolerance and cap, contact options; static).
       throw: raise :class:`~vjax.ConvergenceError` on failure (inside jit too); with False
         inspect ``converged`` and ``result``.
@@ -322,7 +330,8 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
         load_angle=f(load_angle), psi=psi0 + 2 * jnp.pi * jnp.arange(Z) / Z, k=f(k),
         op_outer=None if housing is None else housing.operator(R_outer, n, wO, memory),
         op_inner=None if shaft is None else shaft.operator(R_inner, n, wI, memory))
-    start = None
+    dtype = jnp.result_type(float)
+    start = (jnp.full(Z + 1, jnp.nan, dtype), jnp.zeros((2, n), dtype), jnp.zeros((Z + 1, Z + 1), dtype))  # cold
     if initial is not None:
         if not isinstance(initial, RollerResult) or initial.pressure.shape != (n,) or \
                 initial.roller_angles.shape != (Z,):
