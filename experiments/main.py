@@ -46,6 +46,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
 import concurrent.futures
+import contextlib
 import importlib
 import io
 import multiprocessing
@@ -182,12 +183,8 @@ STAGE_XLA_FLAGS = {"calibration": (CLASSIC,), "foundation": (CLASSIC,), "pin": (
                    "stribeck": (CLASSIC, O0), "thermal": (CLASSIC, O0)}
 
 
-def _run_stage(name, out, quick, cache, prefix=True, xla_flags=False):
-    """Run one stage (in a worker process, or in this one); returns (report, seconds).
-    ``xla_flags``: the stage runs in a fresh process whose JAX backend has not started; set its
-    STAGE_XLA_FLAGS (those XLA_FLAGS does not set already)."""
-    if xla_flags:
-        _common.add_xla_flags(STAGE_XLA_FLAGS.get(name, ()))
+def _run_stage(name, out, quick, cache, prefix=True):
+    """Run one stage (in a worker process, or in this one); returns (report, seconds)."""
     _common.enable_x64()
     if cache:
         from fitting import jax_cache
@@ -218,17 +215,26 @@ def _run_stages(names, out, quick, jobs, cache):
         return reports, times
     pending, running = list(names), {}
     ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
-    # a fresh process per stage (Python >= 3.11), so that each sets its own XLA flags
+    # one pool of worker processes per set of XLA flags (XLA reads them when its backend starts):
+    # a worker runs stage after stage of its set, each process's start-up (imports, ~1 s) and
+    # small compiled programs shared by its stages
     flags = sorted({f for v in STAGE_XLA_FLAGS.values() for f in v})
-    fresh = sys.version_info >= (3, 11) and _common.xla_flags_accepted(flags)
-    with concurrent.futures.ProcessPoolExecutor(jobs, mp_context=ctx,
-                                                **({"max_tasks_per_child": 1} if fresh else {})) as pool:
+    per_stage = _common.xla_flags_accepted(flags)
+    pools = {}
+    with contextlib.ExitStack() as stack:
+        def pool(name):
+            key = tuple(STAGE_XLA_FLAGS.get(name, ())) if per_stage else ()
+            if key not in pools:
+                pools[key] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
+                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(key,)))
+            return pools[key]
+
         while pending or running:
             ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))]
             for name in ready[:jobs - len(running)]:
                 pending.remove(name)
                 print(f"=== {name} (started) ===", flush=True)
-                running[pool.submit(_run_stage, name, out, quick, cache, xla_flags=fresh)] = name
+                running[pool(name).submit(_run_stage, name, out, quick, cache)] = name
             done, _ = concurrent.futures.wait(running, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
                 name = running.pop(future)
