@@ -176,9 +176,10 @@ class _Prefixed(io.TextIOBase):
 # - optimization level 0 compiles 2-4x faster and runs slower: kept where the stage is mostly
 #   compiling and its outputs agree with the default level's to round-off (largest difference
 #   1e-11 of a column's largest value, every check the same), not where the runs cost more than
-#   the compiles save (roller 49 -> 128 CPU-s, bodies 42 -> 43, bores 12 -> 15).
+#   the compiles save (roller 49 -> 128 CPU-s, bodies 42 -> 43, bores 12 -> 15);
+# - none for calibration (brief): it starts while the flags are probed.
 CLASSIC, O0 = _common.CLASSIC_FUSION_EMITTERS, _common.OPTIMIZATION_LEVEL_0
-STAGE_XLA_FLAGS = {"calibration": (CLASSIC,), "foundation": (CLASSIC,), "pin": (CLASSIC, O0), "roller": (),
+STAGE_XLA_FLAGS = {"calibration": (), "foundation": (CLASSIC,), "pin": (CLASSIC, O0), "roller": (),
                    "journal": (CLASSIC, O0), "bodies": (CLASSIC,), "dynamics": (CLASSIC, O0), "bores": (CLASSIC,),
                    "stribeck": (CLASSIC, O0), "thermal": (CLASSIC, O0)}
 
@@ -217,26 +218,37 @@ def _run_stages(names, out, quick, jobs, cache):
     ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
     # one pool of worker processes per set of XLA flags (XLA reads them when its backend starts):
     # a worker runs stage after stage of its set, each process's start-up (imports, ~1 s) and
-    # small compiled programs shared by its stages
+    # small compiled programs shared by its stages. Whether this jaxlib knows the flags is probed
+    # in a subprocess (~1 s) while the stages without flags start.
     flags = sorted({f for v in STAGE_XLA_FLAGS.values() for f in v})
-    per_stage = _common.xla_flags_accepted(flags)
+    prober = concurrent.futures.ThreadPoolExecutor(1)
+    probe = prober.submit(_common.xla_flags_accepted, flags)
     pools = {}
+
+    def key(name):
+        return tuple(STAGE_XLA_FLAGS.get(name, ())) if probe.result() else ()
+
     with contextlib.ExitStack() as stack:
+        stack.callback(prober.shutdown)
+
         def pool(name):
-            key = tuple(STAGE_XLA_FLAGS.get(name, ())) if per_stage else ()
-            if key not in pools:
-                pools[key] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
-                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(key,)))
-            return pools[key]
+            if key(name) not in pools:
+                pools[key(name)] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
+                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(key(name),)))
+            return pools[key(name)]
 
         while pending or running:
-            ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))]
+            ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))
+                     and (probe.done() or not STAGE_XLA_FLAGS.get(s))]
             for name in ready[:jobs - len(running)]:
                 pending.remove(name)
                 print(f"=== {name} (started) ===", flush=True)
                 running[pool(name).submit(_run_stage, name, out, quick, cache)] = name
-            done, _ = concurrent.futures.wait(running, return_when=concurrent.futures.FIRST_COMPLETED)
+            waiting = list(running) + ([] if probe.done() else [probe])
+            done, _ = concurrent.futures.wait(waiting, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
+                if future is probe:
+                    continue
                 name = running.pop(future)
                 try:
                     reports[name], times[name] = future.result()
