@@ -37,7 +37,8 @@ import pytest  # noqa: E402
 # 4e-15 of the largest value; a converged pin pressure 2e-12). Not everywhere: with the classic
 # emitters above, level 0 makes the roller on n = 4096 per ring produce non-finite values (the
 # slow tier's test_roller.py::test_torque_is_resolved_on_a_coarse_grid; either flag alone
-# converges), so rerun a fast test that fails with non-finite values with
+# converges; the roller's own program now takes level 1 whatever XLA_FLAGS says,
+# vjax._core.xla.NOT_LEVEL_0), so rerun a fast test that fails with non-finite values with
 # XLA_FLAGS=--xla_backend_optimization_level=2 before looking for the bug in vjax. The slow tier
 # keeps JAX's default, so `.ci/run` still checks vjax compiled as users compile it. Set before
 # pytest-xdist starts its workers (they inherit it) and before any test module starts JAX's

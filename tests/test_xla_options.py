@@ -1,5 +1,10 @@
 """vjax._core.xla: the solver programs' XLA options must never change what a call computes or
-where it may be called, and must leave the user's own XLA_FLAGS in charge."""
+where it may be called, and must leave the user's own XLA_FLAGS in charge (but for an option
+a program needs to compute correctly)."""
+import os
+import subprocess
+import sys
+
 import jax
 import jax.numpy as jnp
 import numpy as np
@@ -44,3 +49,23 @@ def test_the_users_xla_flags_win(monkeypatch):
         assert dict(xla._accepted(items)) == dict(items)
     finally:
         xla._accepted.cache_clear()
+
+
+def test_a_required_option_is_passed_whatever_xla_flags_says(monkeypatch):
+    """NOT_LEVEL_0 (a program XLA:CPU miscompiles at level 0) overrides the user's level 0,
+    and the roller, whose Newton has that structure, converges in a process at level 0."""
+    items = tuple(sorted({"xla_cpu_use_fusion_emitters": False}.items()))
+    required = tuple(sorted(xla.NOT_LEVEL_0.items()))
+    xla._accepted.cache_clear()
+    try:
+        monkeypatch.setenv("XLA_FLAGS", "--xla_backend_optimization_level=0 --xla_cpu_use_fusion_emitters=true")
+        assert dict(xla._accepted(items, required)) == xla.NOT_LEVEL_0
+    finally:
+        xla._accepted.cache_clear()
+    code = ("import jax; jax.config.update('jax_enable_x64', True); import vjax; "
+            "m = vjax.Material.sls(1e6, 1e7, 0.01, 0.5); "
+            "r = vjax.roller_bearing(m, m, 6e-3, 4e-3, 2e-3, 9, 39.0, options=vjax.RollerOptions(n=256), throw=False); "
+            "print(int(r.result))")
+    env = dict(os.environ, XLA_FLAGS="--xla_backend_optimization_level=0")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=600)
+    assert out.stdout.strip().splitlines()[-1] == "0", out.stderr[-2000:]

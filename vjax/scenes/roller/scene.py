@@ -61,13 +61,12 @@ housing's net force from the load line, ``friction_angle`` = arccos(|F_r|/|F|) a
 from __future__ import annotations
 
 import dataclasses
-from functools import partial
 
 import jax
 import jax.numpy as jnp
 import numpy as np
 
-from ..._core import checks, scene as _scene, solve as _solve
+from ..._core import checks, scene as _scene, solve as _solve, xla
 from . import balance
 from ...bodies.body import as_body, check_fits, disc, hole
 from ...contact.solve import ContactOptions
@@ -225,7 +224,7 @@ def _outputs(x, P, cfg, warm, stats, speeds, jacobian):
         jacobian=jacobian, iterations=stats.iterations, residual=stats.residual, result=stats.result)
 
 
-@partial(jax.jit, static_argnums=(3, 4))
+@xla.jit(static_argnums=(3, 4), options={}, required=xla.NOT_LEVEL_0)
 def _solve_bearing(P, start, speeds, cfg, options):
     """Newton at the root with implicit derivatives, then the outputs (compiled once per config)."""
     def solver(params):
@@ -239,7 +238,7 @@ def _solve_bearing(P, start, speeds, cfg, options):
         # finite (a cold start: NaN) is an exact Newton from the initial guess, in the same program
         x0, p0, J0 = jax.lax.stop_gradient(start)
         warm_start = jnp.all(jnp.isfinite(x0))
-        x0 = jnp.where(warm_start, x0, balance.initial_guess(prm, cfg))
+        x0 = jnp.where(warm_start, jnp.where(jnp.isfinite(x0), x0, 0.0), balance.initial_guess(prm, cfg))
         p0, J0 = jnp.where(warm_start, p0, 0.0), jnp.where(warm_start, J0, 0.0)
         x, warm, stats, J = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
                                           max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0,
