@@ -27,13 +27,14 @@ Stages (each writes PNG + CSV into ``<out>/<stage>/`` and returns a short text):
 description, figures and output. The job exits with status 1 if a check fails; a stage that
 raises stops it (files are written atomically, so nothing half-written is left behind).
 
-The stages run side by side in ``--jobs`` worker processes (default: one per CPU), longest
-first, each printing its lines prefixed with its name; they share vjax's persistent
-compilation cache unless ``--no-cache``. A stage is XLA compiling its solvers (one core's
-work) and running them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`). The
-full run took 76.5 s wall (140 CPU-s) from an empty cache on a quiet 2-core machine whose
-calibration total (``experiments/benchmarks/calibrate.py``) was 5.2-5.4 s around it
-(docs/benchmarks.md, "2026-11-28 (night ...)").
+The stages run side by side, ``--jobs`` at a time (default: one per CPU), longest first, each
+printing its lines prefixed with its name; they share vjax's persistent compilation cache
+unless ``--no-cache``. A stage is XLA compiling its solvers (one core's work) and running
+them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`), in a worker process that
+runs stage after stage of the same flags. The full run took 72.2 s wall (137 CPU-s) from an
+empty cache on a quiet 2-core machine whose calibration total
+(``experiments/benchmarks/calibrate.py``) was 5.6-5.8 s around it (docs/benchmarks.md,
+"2026-11-28 (late: ...)").
 """
 from __future__ import annotations
 
@@ -69,11 +70,12 @@ STAGES = [
     ("thermal", "experiments.figures.thermal_figures", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (wall seconds of each stage
-# alone, empty cache, its STAGE_XLA_FLAGS, a quiet machine at calibration 5.6 s: bodies 24, journal
-# 21, roller 19, stribeck 15, dynamics 13, thermal 12, pin 10, bores 6, foundation 4), so that the
-# last to finish are short ones; calibration first, bodies right after it (it waits for it). A
-# stage of STAGES not named here starts right after calibration (its cost unknown: early, so that
-# it does not finish last).
+# beside another, empty cache, its STAGE_XLA_FLAGS, a quiet machine at calibration 5.6 s: journal
+# 21, stribeck 20, bodies 20, roller 19, thermal 16, dynamics 15, pin 11, bores 5, foundation 3),
+# so that the last to finish are short ones; calibration first, bodies after it (it waits for it;
+# roller, without XLA flags, starts beside calibration while the flags are probed). A stage of
+# STAGES not named here starts right after calibration (its cost unknown: early, so that it does
+# not finish last).
 ORDER = ("calibration", "journal", "bodies", "roller", "stribeck", "dynamics", "thermal", "pin", "bores",
          "foundation")
 PRIORITY = ([s for s in STAGES if s[0] == ORDER[0]] + [s for s in STAGES if s[0] not in ORDER]
