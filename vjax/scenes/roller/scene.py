@@ -238,7 +238,7 @@ def _solve_bearing(P, start, speeds, cfg, options):
         # finite (a cold start: NaN) is an exact Newton from the initial guess, in the same program
         x0, p0, J0 = jax.lax.stop_gradient(start)
         warm_start = jnp.all(jnp.isfinite(x0))
-        x0 = jnp.where(warm_start, jnp.where(jnp.isfinite(x0), x0, 0.0), balance.initial_guess(prm, cfg))
+        x0 = jnp.where(warm_start, x0, balance.initial_guess(prm, cfg))
         p0, J0 = jnp.where(warm_start, p0, 0.0), jnp.where(warm_start, J0, 0.0)
         x, warm, stats, J = _solve.newton(equations, x0, p0, tol=options.tol, max_iter=options.max_iter,
                                           max_step=jnp.full(x0.shape, 0.1) * prm.r, jacobian=J0,
