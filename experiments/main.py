@@ -234,10 +234,11 @@ def _run_stages(names, out, quick, jobs, cache):
         stack.callback(prober.shutdown)
 
         def pool(name):
-            if key(name) not in pools:
-                pools[key(name)] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
-                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(key(name),)))
-            return pools[key(name)]
+            k = key(name)
+            if k not in pools:
+                pools[k] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
+                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(k,)))
+            return pools[k]
 
         while pending or running:
             ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))

@@ -299,7 +299,7 @@ def _solver(params, st: _Static, shape, x0, T0):
         _, T_rise, change, k, fails = c[:5]
         return (change > st.tol) & (k < st.max_iter) & (fails < MAX_FAILS) & ~hot(T_rise)
 
-    if checks.is_concrete(jax.tree_util.tree_leaves(params)):
+    if checks.is_concrete(params):
         while bool(cond(carry)):
             carry = _round_compiled(carry, params, st, shape)
     else:
@@ -409,9 +409,7 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
                                       cavitation=cavitation, options=_steady.coarse_options(options),
                                       tol=max(st.tol, COARSE_TOL), max_iter=max_iter, relax=relax, throw=False)
         if bool(coarse.converged):
-            T0 = coarse.temperature - heat.T_supply
-            while T0.shape[0] < shape[0]:
-                T0 = _steady.doubled(T0)
+            T0 = _steady.finer(coarse.temperature - heat.T_supply, shape[0])
             return _finish(_steady.refined(coarse.scene, pr0, cfg0), jax.lax.stop_gradient(T0), params, st, shape,
                            lubricant, heat, throw)
     # else from the isothermal film at the supply temperature and a mean-rise estimate (_first_temperatures)

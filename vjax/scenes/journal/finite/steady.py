@@ -289,11 +289,16 @@ def refined(coarse: FiniteJournalResult, pr: Params, cfg: Config):
     theta, then in z; NaN where the coarse solve failed (then the rigid estimate starts,
     :func:`solve`)."""
     u = coarse.pressure / pr.p_ref + (coarse.film_fraction - 1.0)      # "jfo": the universal unknown
-    asperity = coarse.asperity_pressure
-    while u.shape[0] < cfg.n:
-        u, asperity = doubled(u), doubled(asperity)
-    x0 = as_unknowns(u, coarse.position, pr, cfg, asperity)
+    x0 = as_unknowns(finer(u, cfg.n), coarse.position, pr, cfg, finer(coarse.asperity_pressure, cfg.n))
     return jax.lax.stop_gradient(jnp.where(coarse.converged, x0, jnp.nan)).astype(pr.x0.dtype)
+
+
+def finer(u, n: int):
+    """Node values (n_c, m_c + 1) of a 2^j x coarser grid on this grid's n lines: :func:`doubled`
+    until they have n."""
+    while u.shape[0] < n:
+        u = doubled(u)
+    return u
 
 
 def doubled(u):
@@ -338,8 +343,7 @@ def finite_journal_bearing(R, radial_clearance, viscosity, load, length, *, hous
         # from the coarse solution Newton alone will do, in a smaller program (less to compile);
         # not inside a transformation (the fallback's choice needs concrete values), under JFO,
         # or where the coarse solve failed (then the rigid estimate starts, :func:`_run`)
-        if (cfg.cavitation == "reynolds" and checks.is_concrete(pr)
-                and bool(coarse.converged)):
+        if cfg.cavitation == "reynolds" and checks.is_concrete(pr) and bool(coarse.converged):
             sol = _run_polish(pr, cfg)
             if bool(sol.converged):
                 return sol
