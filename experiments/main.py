@@ -46,8 +46,9 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
+import atexit
 import concurrent.futures
-import contextlib
+import gc
 import importlib
 import io
 import multiprocessing
@@ -186,13 +187,22 @@ STAGE_XLA_FLAGS = {"calibration": (), "foundation": (CLASSIC,), "pin": (CLASSIC,
                    "stribeck": (CLASSIC, O0), "thermal": (CLASSIC, O0)}
 
 
-def _run_stage(name, out, quick, cache, prefix=True):
-    """Run one stage (in a worker process, or in this one); returns (report, seconds)."""
+def _run_stage(name, out, quick, cache, prefix=True, core=None):
+    """Run one stage (in a worker process, or in this one), on CPU ``core`` alone if given;
+    returns (report, seconds)."""
+    if core is not None:
+        os.sched_setaffinity(0, {core})
+    # JAX's tracing makes millions of short-lived objects: at Python's default threshold (700
+    # allocations) the cyclic collector runs ~1000 times a stage, ~4 % of its time; the stages
+    # make few cycles
+    gc.set_threshold(50_000)
     _common.enable_x64()
     if cache:
         from fitting import jax_cache
         jax_cache.enable()
-    module, func = next((m, f) for s, m, f in STAGES if s == name)
+    module, func = next(((m, f) for s, m, f in STAGES if s == name), (None, None))
+    if module is None:
+        raise ValueError(f"name: no stage {name!r} (stages: {', '.join(s[0] for s in STAGES)})")
     stdout = sys.stdout
     if prefix:
         sys.stdout = _Prefixed(stdout, f"[{name}] ")
@@ -202,6 +212,20 @@ def _run_stage(name, out, quick, cache, prefix=True):
         return report, time.perf_counter() - t0
     finally:
         sys.stdout = stdout
+
+
+def _start_worker(flags):
+    """A worker process's set-up: its XLA flags, and an end without Python's finalization (about
+    1 s with JAX loaded, paid by every worker when the job closes its pools after the last stage;
+    a worker's outputs are written by then)."""
+    _common.add_xla_flags(flags)
+    atexit.register(_exit_now)
+
+
+def _exit_now():
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
 
 
 def _run_stages(names, out, quick, jobs, cache):
@@ -217,6 +241,11 @@ def _run_stages(names, out, quick, jobs, cache):
             print(f"[{name}: {times[name]:.1f} s]", flush=True)
         return reports, times
     pending, running = list(names), {}
+    # each running stage on a core of its own: XLA sizes a process's thread pools by the cores
+    # it may use when its backend starts, and two workers free to use both cores interrupt each
+    # other (a stage beside another 7 % slower than pinned; docs/benchmarks.md)
+    cores = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
+    free = cores if jobs <= len(cores) else [None] * jobs
     ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
     # one pool of worker processes per set of XLA flags (XLA reads them when its backend starts):
     # a worker runs stage after stage of its set, each process's start-up (imports, ~1 s) and
@@ -227,39 +256,43 @@ def _run_stages(names, out, quick, jobs, cache):
     probe = prober.submit(_common.xla_flags_accepted, flags)
     pools = {}
 
-    def key(name):
-        return tuple(STAGE_XLA_FLAGS.get(name, ())) if probe.result() else ()
+    def key(name):      # a stage without flags does not wait for the probe
+        flags = tuple(STAGE_XLA_FLAGS.get(name, ()))
+        return flags if flags and probe.result() else ()
 
-    with contextlib.ExitStack() as stack:
-        stack.callback(prober.shutdown)
+    def pool(name):
+        k = key(name)
+        if k not in pools:
+            pools[k] = concurrent.futures.ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_start_worker,
+                                                              initargs=(k,))
+        return pools[k]
 
-        def pool(name):
-            k = key(name)
-            if k not in pools:
-                pools[k] = stack.enter_context(concurrent.futures.ProcessPoolExecutor(
-                    jobs, mp_context=ctx, initializer=_common.add_xla_flags, initargs=(k,)))
-            return pools[k]
-
+    try:
         while pending or running:
             ready = [s for s in pending if all(d in reports or d not in names for d in DEPENDS.get(s, ()))
                      and (probe.done() or not STAGE_XLA_FLAGS.get(s))]
             for name in ready[:jobs - len(running)]:
                 pending.remove(name)
+                core = free.pop(0)
                 print(f"=== {name} (started) ===", flush=True)
-                running[pool(name).submit(_run_stage, name, out, quick, cache)] = name
+                running[pool(name).submit(_run_stage, name, out, quick, cache, True, core)] = name, core
             waiting = list(running) + ([] if probe.done() else [probe])
             done, _ = concurrent.futures.wait(waiting, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
                 if future is probe:
                     continue
-                name = running.pop(future)
-                try:
-                    reports[name], times[name] = future.result()
-                except BaseException:
-                    for f in running:
-                        f.cancel()
-                    raise
+                name, core = running.pop(future)
+                free.append(core)
+                reports[name], times[name] = future.result()      # a stage that raised stops the job
                 print(f"[{name}: {times[name]:.1f} s]", flush=True)
+    finally:
+        # every pool told first (stages not started are cancelled), then waited for: their workers
+        # end side by side
+        for p in pools.values():
+            p.shutdown(wait=False, cancel_futures=True)
+        for p in pools.values():
+            p.shutdown()
+        prober.shutdown()
     return {n: reports[n] for n in names}, times
 
 
