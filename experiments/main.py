@@ -228,6 +228,22 @@ def _exit_now():
     os._exit(0)
 
 
+# imported once by the fork server, whose forks are the workers: none of them starts JAX's
+# backend (or a thread), which a fork would not carry over
+PRELOAD = ["numpy", "matplotlib.pyplot", "jax", "vjax", "fitting", "experiments.main"]
+
+
+def _worker_context():
+    """Workers forked from a server that has imported :data:`PRELOAD` (~1 s of imports once, not
+    in every worker), where the platform has one; spawned (each importing anew) elsewhere.
+    Never a plain fork of this process: JAX's runtime threads do not survive it."""
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("spawn")
+    ctx = multiprocessing.get_context("forkserver")
+    ctx.set_forkserver_preload(PRELOAD)
+    return ctx
+
+
 def _run_stages(names, out, quick, jobs, cache):
     """Run the stages, ``jobs`` at a time in worker processes (each stage is mostly XLA
     compiling its solvers, one core's work), longest first, a stage only after those it reads
@@ -246,7 +262,7 @@ def _run_stages(names, out, quick, jobs, cache):
     # other (a stage beside another 7 % slower than pinned; docs/benchmarks.md)
     cores = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
     free = cores if jobs <= len(cores) else [None] * jobs
-    ctx = multiprocessing.get_context("spawn")     # JAX's runtime threads do not survive a fork
+    ctx = _worker_context()
     # one pool of worker processes per set of XLA flags (XLA reads them when its backend starts):
     # a worker runs stage after stage of its set, each process's start-up (imports, ~1 s) and
     # small compiled programs shared by its stages. Whether this jaxlib knows the flags is probed
