@@ -9,8 +9,9 @@ Run::
 outer ring fixed, both rings SLS E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s, nu = 0.5,
 F~ = F/(E0 R_O) = 6.5e-3 along x (roller 1 on the load line), ref_length = 1 m. The shaft
 turns at omega_I > 0 and omega~ = |omega_O,c| tau = omega_c tau (omega_c the cage speed).
-Each speed sweep is one jitted ``lax.scan`` over 60 speeds (20 with --quick) with
-continuation (``roller_bearing(initial=previous)``), one per memory model.
+Each speed sweep is one jitted ``lax.scan`` from rest over 60 speeds (20 with --quick; the
+snapshots' among them) with continuation (``roller_bearing(initial=previous)``), one per memory
+model and load.
 
 - Fig. 2.14 (``roller_fig2_14.png``): for rollers 1, 2, 3, 8, 9 (the load zone) the total
   deflection delta_j/R_O, the ring displacements at the roller u_j^O/R_O and u_j^I/R_O, the gap
@@ -241,18 +242,26 @@ NEEDLE_LENGTH = 7.8e-3
 def main(out_dir="experiments/out", quick=False):
     out = _common.setup(out_dir)
     n = 512 if quick else 1024
-    nw = 20 if quick else 60
-    w = np.logspace(-4, 4, nw)
-    lines = [f"roller_figures: thesis case, n = {n} elements per ring, {nw} speeds omega~ = 1e-4..1e4"]
+    # log-spaced speeds with Figs. 2.16-2.20's snapshots among them; every sweep starts from rest,
+    # whose point is the first snapshot (and the elastic check) and is left out of the curves
+    w = np.union1d(np.logspace(-4, 4, (20 if quick else 60) - len(SNAPS) + 1), SNAPS[1:])
+    speeds = jnp.asarray(shaft_speed(np.concatenate([[0.0], w])))
+    lines = [f"roller_figures: thesis case, n = {n} elements per ring, {w.size} speeds omega~ = 1e-4..1e4 "
+             f"(among them {', '.join(f'{x:g}' for x in SNAPS[1:])}) after rest"]
     t0 = time.perf_counter()
     sweep = make_sweep(n)
-    torque_res = {}
+    torque_res, snaps, failures = {}, {}, 0
     for mem in MEMORIES:
         for Ft in (LOADS if not quick else (F_TILDE,)):
             load = Ft * E0 * RO
             t = time.perf_counter()
-            s = jax.device_get(sweep(SLS, load, jnp.asarray(shaft_speed(w)), mem)[0])
-            torque_res[(mem, Ft)] = {k: np.asarray(v) for k, v in s.items()}
+            rec, full = jax.device_get(sweep(SLS, load, speeds, mem))
+            s = torque_res[(mem, Ft)] = {k: np.asarray(v)[1:] for k, v in rec.items()}
+            failures += int(np.sum(~np.asarray(rec["converged"])))        # the point at rest too
+            if Ft == F_TILDE:
+                for wt in SNAPS:
+                    i = 0 if wt == 0.0 else 1 + int(np.flatnonzero(w == wt)[0])
+                    snaps[(mem, wt)] = jax.tree_util.tree_map(lambda a, i=i: a[i], full)
             lines.append(f"  sweep {mem:8s} F~={Ft:g}: {time.perf_counter() - t:6.1f} s, all converged: "
                          f"{bool(np.all(s['converged']))}, Newton iterations {int(np.min(s['iterations']))}-"
                          f"{int(np.max(s['iterations']))}, max load-balance error "
@@ -276,20 +285,8 @@ def main(out_dir="experiments/out", quick=False):
             lines.append(f"  {mem} omega~={w[i]:g}: load asymmetry {asym:.1e}, C~ = "
                          f"{abs(res[mem]['torque'][i, 0]) / (F_TILDE * E0 * RO * RO):.1e}, Q_max Z/F = "
                          f"{L.max() * Z / (F_TILDE * E0 * RO):.4f}")
-    # Figs. 2.16-2.20's snapshots: the points of one more sweep (the same compiled program) from
-    # rest through SNAPS, on len(w) speeds, SNAPS[1:] among them with log-spaced steps between
-    decades = np.diff(np.log10(SNAPS[1:]))
-    steps = np.maximum(1, np.round(decades / decades.sum() * (len(w) - 2))).astype(int)
-    steps[-1] = len(w) - 2 - steps[:-1].sum()
-    snap_ws = np.concatenate([SNAPS[:2]] + [np.geomspace(a, b, k + 1)[1:] for a, b, k in
-                                             zip(SNAPS[1:-1], SNAPS[2:], steps)])
-    snaps = {}
     for mem in MEMORIES:
-        rec, full = jax.device_get(sweep(SLS, F_TILDE * E0 * RO, jnp.asarray(shaft_speed(snap_ws)), mem))
-        lines.append(f"  snapshots {mem}: all converged {bool(np.all(rec['converged']))}")
-        for wt in SNAPS:
-            i = int(np.flatnonzero(snap_ws == wt)[0])
-            snaps[(mem, wt)] = jax.tree_util.tree_map(lambda a, i=i: a[i], full)
+        lines.append(f"  snapshots {mem}: all converged {all(bool(snaps[(mem, wt)].converged) for wt in SNAPS)}")
     # The elastic check: the SLS rings at rest are elastic rings of modulus E0 (their operator at zero
     # speed is the relaxed one), the snapshot at omega~ = 0
     r_el = snaps[("periodic", 0.0)]
@@ -369,7 +366,7 @@ def main(out_dir="experiments/out", quick=False):
     i14 = int(np.argmin(np.abs(np.log(w / 1.4))))
     checks = [
         _common.Check("all sweep points converged (count of failures)",
-                      sum(int(np.sum(~np.asarray(s["converged"]))) for s in torque_res.values()), 0, 0,
+                      failures, 0, 0,
                       "solver report", "max"),
         _common.Check("load balance: max abs(F_x(inner ring) - F) / F over every sweep",
                       max(float(np.max(s["load_error"])) for s in torque_res.values()), 1e-9, 0,
