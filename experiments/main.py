@@ -187,11 +187,8 @@ STAGE_XLA_FLAGS = {"calibration": (), "foundation": (CLASSIC,), "pin": (CLASSIC,
                    "stribeck": (CLASSIC, O0), "thermal": (CLASSIC, O0)}
 
 
-def _run_stage(name, out, quick, cache, prefix=True, core=None):
-    """Run one stage (in a worker process, or in this one), on CPU ``core`` alone if given;
-    returns (report, seconds)."""
-    if core is not None:
-        os.sched_setaffinity(0, {core})
+def _run_stage(name, out, quick, cache, prefix=True):
+    """Run one stage (in a worker process, or in this one); returns (report, seconds)."""
     # JAX's tracing makes millions of short-lived objects: at Python's default threshold (700
     # allocations) the cyclic collector runs ~1000 times a stage, ~4 % of its time; the stages
     # make few cycles
@@ -214,11 +211,14 @@ def _run_stage(name, out, quick, cache, prefix=True, core=None):
         sys.stdout = stdout
 
 
-def _start_worker(flags):
-    """A worker process's set-up: its XLA flags, and an end without Python's finalization (about
-    1 s with JAX loaded, paid by every worker when the job closes its pools after the last stage;
-    a worker's outputs are written by then)."""
+def _start_worker(flags, core):
+    """A worker process's set-up: CPU ``core`` alone (if not None), its XLA flags, and an end
+    without Python's finalization (about 1 s with JAX loaded, paid by every worker when the job
+    closes its pools after the last stage; a worker's outputs are written by then)."""
+    if core is not None:
+        os.sched_setaffinity(0, {core})
     _common.add_xla_flags(flags)
+    gc.freeze()      # the modules the fork server imported: never garbage, out of the collector's passes
     atexit.register(_exit_now)
 
 
@@ -257,16 +257,18 @@ def _run_stages(names, out, quick, jobs, cache):
             print(f"[{name}: {times[name]:.1f} s]", flush=True)
         return reports, times
     pending, running = list(names), {}
-    # each running stage on a core of its own: XLA sizes a process's thread pools by the cores
+    # ``jobs`` slots, each with a core of its own: XLA sizes a process's thread pools by the cores
     # it may use when its backend starts, and two workers free to use both cores interrupt each
     # other (a stage beside another 7 % slower than pinned; docs/benchmarks.md)
     cores = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
-    free = cores if jobs <= len(cores) else [None] * jobs
+    core = {slot: cores[slot] if jobs <= len(cores) else None for slot in range(jobs)}
+    free = list(range(jobs))
     ctx = _worker_context()
-    # one pool of worker processes per set of XLA flags (XLA reads them when its backend starts):
-    # a worker runs stage after stage of its set, each process's start-up (imports, ~1 s) and
-    # small compiled programs shared by its stages. Whether this jaxlib knows the flags is probed
-    # in a subprocess (~1 s) while the stages without flags start.
+    # one worker process per slot and set of XLA flags (XLA reads them when its backend starts),
+    # which runs stage after stage of its set in its slot, its compiled programs shared by them
+    # (a pool of one: with more, which worker takes a stage would be left to chance, and a stage
+    # in a fresh worker compiles again what another stage of its set already had). Whether this
+    # jaxlib knows the flags is probed in a subprocess (~1 s) while the stages without flags start.
     flags = sorted({f for v in STAGE_XLA_FLAGS.values() for f in v})
     prober = concurrent.futures.ThreadPoolExecutor(1)
     probe = prober.submit(_common.xla_flags_accepted, flags)
@@ -276,11 +278,11 @@ def _run_stages(names, out, quick, jobs, cache):
         flags = tuple(STAGE_XLA_FLAGS.get(name, ()))
         return flags if flags and probe.result() else ()
 
-    def pool(name):
-        k = key(name)
+    def pool(name, slot):
+        k = key(name), slot
         if k not in pools:
-            pools[k] = concurrent.futures.ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_start_worker,
-                                                              initargs=(k,))
+            pools[k] = concurrent.futures.ProcessPoolExecutor(1, mp_context=ctx, initializer=_start_worker,
+                                                              initargs=(k[0], core[slot]))
         return pools[k]
 
     try:
@@ -289,16 +291,16 @@ def _run_stages(names, out, quick, jobs, cache):
                      and (probe.done() or not STAGE_XLA_FLAGS.get(s))]
             for name in ready[:jobs - len(running)]:
                 pending.remove(name)
-                core = free.pop(0)
+                slot = free.pop(0)
                 print(f"=== {name} (started) ===", flush=True)
-                running[pool(name).submit(_run_stage, name, out, quick, cache, True, core)] = name, core
+                running[pool(name, slot).submit(_run_stage, name, out, quick, cache)] = name, slot
             waiting = list(running) + ([] if probe.done() else [probe])
             done, _ = concurrent.futures.wait(waiting, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
                 if future is probe:
                     continue
-                name, core = running.pop(future)
-                free.append(core)
+                name, slot = running.pop(future)
+                free.append(slot)
                 reports[name], times[name] = future.result()      # a stage that raised stops the job
                 print(f"[{name}: {times[name]:.1f} s]", flush=True)
     finally:
