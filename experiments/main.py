@@ -44,6 +44,10 @@ import os
 # jaxlib's dense LU calls would otherwise oversubscribe the cores (10-20x slower solves).
 # Before numpy loads it; the stages' worker processes inherit it.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+# float64 and matplotlib's file backend from the start: the workers' fork server imports jax, vjax
+# and pyplot before a stage could turn them on (vjax warns on import without float64)
+os.environ.setdefault("JAX_ENABLE_X64", "1")
+os.environ.setdefault("MPLBACKEND", "Agg")
 
 import argparse  # noqa: E402
 import atexit
@@ -230,7 +234,7 @@ def _exit_now():
 
 # imported once by the fork server, whose forks are the workers: none of them starts JAX's
 # backend (or a thread), which a fork would not carry over
-PRELOAD = ["numpy", "matplotlib.pyplot", "jax", "vjax", "fitting", "experiments.main"]
+PRELOAD = ["numpy", "matplotlib.pyplot", "jax", "vjax", "fitting", "experiments._common"]
 
 
 def _worker_context():
@@ -268,10 +272,10 @@ def _run_stages(names, out, quick, jobs, cache):
     # which runs stage after stage of its set in its slot, its compiled programs shared by them
     # (a pool of one: with more, which worker takes a stage would be left to chance, and a stage
     # in a fresh worker compiles again what another stage of its set already had). Whether this
-    # jaxlib knows the flags is probed in a subprocess (~1 s) while the stages without flags start.
+    # jaxlib knows the flags is probed in a worker-like process while the stages without flags start.
     flags = sorted({f for v in STAGE_XLA_FLAGS.values() for f in v})
     prober = concurrent.futures.ThreadPoolExecutor(1)
-    probe = prober.submit(_common.xla_flags_accepted, flags)
+    probe = prober.submit(_common.xla_flags_accepted, flags, ctx)
     pools = {}
 
     def key(name):      # a stage without flags does not wait for the probe
