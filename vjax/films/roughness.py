@@ -121,12 +121,13 @@ def _F_kummer(n, H):
     positive series: no cancellation (0 <= H < 1: mild); 128 terms reach 1e-14 for z <= 50."""
     z = 0.5 * H * H
     logz = jnp.log(jnp.maximum(z, jnp.finfo(H.dtype).tiny))     # z = 0: the k = 0 term alone
-    k = jnp.arange(_KUMMER_TERMS, dtype=H.dtype)
-    lg = jax.scipy.special.gammaln
+    k = np.arange(_KUMMER_TERMS)
+    lg = np.vectorize(math.lgamma)
 
     def m(a, b):     # e^-z M(a, b, z), summed in log space
-        lt = (lg(a + k) - lg(a) - lg(b + k) + lg(b) - lg(k + 1.0)
-              + k * logz[..., None] - z[..., None])
+        # log((a)_k / ((b)_k k!)): constants of the static n, computed here, not in the program
+        log_coefficients = jnp.asarray(lg(a + k) - lg(a) - lg(b + k) + lg(b) - lg(k + 1.0), H.dtype)
+        lt = log_coefficients + k.astype(H.dtype) * logz[..., None] - z[..., None]
         return jnp.exp(jax.scipy.special.logsumexp(lt, axis=-1))
 
     pre = math.exp(math.lgamma(n + 1) - 0.5 * (n + 1) * math.log(2) - 0.5 * math.log(2 * math.pi))
@@ -139,12 +140,13 @@ def _F_asymptotic(n, H):
     Gaussian, F_n = sum_k C(n, 2k) (2k-1)!! a^{n-2k} (the part s < -a, e^{-a^2/2} ~ 2e-22
     relative, dropped); 16 terms: the series' truncation below 1e-15 for a >= 10."""
     a = -H
-    total = jnp.zeros_like(a)
-    for k in range(_ASYMPTOTIC_TERMS - 1, -1, -1):      # Horner in 1/a^2
-        binom = math.prod((n - j) / (j + 1) for j in range(2 * k))      # C(n, 2k), n real
-        dfact = math.prod(range(2 * k - 1, 0, -2))                      # (2k-1)!!, 1 for k = 0
-        total = total / (a * a) + binom * dfact
-    return total * a ** n
+    coefficients = jnp.asarray([math.prod((n - j) / (j + 1) for j in range(2 * k))      # C(n, 2k), n real
+                                * math.prod(range(2 * k - 1, 0, -2))                    # (2k-1)!!, 1 for k = 0
+                                for k in range(_ASYMPTOTIC_TERMS)], H.dtype)
+    # the terms as one array (a program a tenth the size of a Horner loop unrolled over them):
+    # they fall by (n/a)^2 <= 1/16 each, summed smallest first
+    powers = (a * a)[..., None] ** -jnp.arange(_ASYMPTOTIC_TERMS - 1, -1, -1, dtype=H.dtype)
+    return jnp.sum(coefficients[::-1] * powers, axis=-1) * a ** n
 
 
 def _F(n: float, H):
