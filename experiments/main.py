@@ -31,10 +31,11 @@ The stages run side by side, ``--jobs`` at a time (default: one per CPU), longes
 printing its lines prefixed with its name; they share vjax's persistent compilation cache
 unless ``--no-cache``. A stage is XLA compiling its solvers (one core's work) and running
 them, each stage with its own XLA flags (:data:`STAGE_XLA_FLAGS`), in a worker process that
-runs stage after stage of the same flags. The full run took 72.2 s wall (137 CPU-s) from an
+runs stage after stage of the same flags on a core of its own; the workers are forked from a
+server that has imported jax, vjax and matplotlib once. The full run took 54.4 s wall from an
 empty cache on a quiet 2-core machine whose calibration total
-(``experiments/benchmarks/calibrate.py``) was 5.6-5.8 s around it (docs/benchmarks.md,
-"2026-11-28 (late: ...)").
+(``experiments/benchmarks/calibrate.py``) was 5.0-5.2 s around it (docs/benchmarks.md,
+"2026-11-28 (evening: ...)").
 """
 from __future__ import annotations
 
@@ -75,12 +76,14 @@ STAGES = [
     ("thermal", "experiments.figures.thermal_figures", "stage"),
 ]
 # the order stages start in when they run side by side: longest first (wall seconds of each stage
-# beside another, empty cache, its STAGE_XLA_FLAGS, a quiet machine at calibration 5.6 s: journal
-# 21, stribeck 20, bodies 20, roller 19, thermal 16, dynamics 15, pin 11, bores 5, foundation 3),
-# so that the last to finish are short ones; calibration first, bodies after it (it waits for it;
-# roller, without XLA flags, starts beside calibration while the flags are probed). A stage of
-# STAGES not named here starts right after calibration (its cost unknown: early, so that it does
-# not finish last).
+# beside another, empty cache, its STAGE_XLA_FLAGS, a quiet machine at calibration 5.0-5.2 s:
+# bodies 17, journal 16, roller 16, stribeck 13, thermal 13, dynamics 12, pin 8, bores 4,
+# foundation 3), so that the last to finish are short ones; calibration first, bodies after it (it
+# waits for it; roller, without XLA flags, starts beside calibration while the flags are probed).
+# On two cores the slots then run calibration, journal, stribeck, dynamics, pin and roller,
+# bodies, thermal, bores, foundation: 52 and 54 s of stages; the first four after calibration
+# share one worker (one flag set). A stage of STAGES not named here starts right after
+# calibration (its cost unknown: early, so that it does not finish last).
 ORDER = ("calibration", "journal", "bodies", "roller", "stribeck", "dynamics", "thermal", "pin", "bores",
          "foundation")
 PRIORITY = ([s for s in STAGES if s[0] == ORDER[0]] + [s for s in STAGES if s[0] not in ORDER]
