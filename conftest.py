@@ -51,6 +51,23 @@ def pytest_configure(config):
     flags = os.environ.get("XLA_FLAGS", "")
     if config.option.markexpr == "not slow" and "xla_backend_optimization_level" not in flags:
         os.environ["XLA_FLAGS"] = f"{flags} {FAST_TIER_XLA_FLAGS}".strip()
+    _pin_worker()
+    # JAX's tracing makes millions of short-lived objects: at Python's default threshold (700
+    # allocations) the cyclic collector's young passes are a few percent of a compile-bound run
+    gc.set_threshold(50_000)
+
+
+def _pin_worker():
+    """A pytest-xdist worker on a core of its own when there are as many cores as workers, before
+    JAX's backend starts: XLA sizes its thread pools by the cores a process may use, and workers
+    free to use every core interrupt each other (the main job's stages: 7 % slower unpinned,
+    docs/benchmarks.md)."""
+    worker, count = os.environ.get("PYTEST_XDIST_WORKER", ""), os.environ.get("PYTEST_XDIST_WORKER_COUNT", "")
+    if not (worker.startswith("gw") and count.isdigit() and hasattr(os, "sched_getaffinity")):
+        return
+    cores = sorted(os.sched_getaffinity(0))
+    if int(count) <= len(cores):
+        os.sched_setaffinity(0, {cores[int(worker[2:]) % len(cores)]})
 
 
 jax.config.update("jax_enable_x64", True)
