@@ -12,7 +12,7 @@ def test_a_stage_that_raises_stops_the_job_with_its_error(tmp_path):
 
 @pytest.mark.slow     # ~4 s of two worker processes beside the suite's; the main job itself runs every stage
 def test_two_stages_side_by_side_pass_their_checks(tmp_path):
-    # two pools (calibration has no XLA flags, foundation has), each stage on a core of its own
+    # two workers (calibration without XLA flags, foundation with them), each on a core of its own
     status = main_job.main(["--quick", "--only", "calibration", "foundation", "--jobs", "2", "--no-cache",
                             "--out", str(tmp_path)])
     assert status == 0

@@ -143,8 +143,8 @@ def _F_asymptotic(n, H):
     coefficients = jnp.asarray([math.prod((n - j) / (j + 1) for j in range(2 * k))      # C(n, 2k), n real
                                 * math.prod(range(2 * k - 1, 0, -2))                    # (2k-1)!!, 1 for k = 0
                                 for k in range(_ASYMPTOTIC_TERMS)], H.dtype)
-    # the terms as one array (a program a tenth the size of a Horner loop unrolled over them):
-    # they fall by (n/a)^2 <= 1/16 each, summed smallest first
+    # the terms as one array (a program a tenth the size of a Horner loop unrolled over them),
+    # summed smallest first (for a >= 10 each is a small fraction of the one before)
     powers = (a * a)[..., None] ** -jnp.arange(_ASYMPTOTIC_TERMS - 1, -1, -1, dtype=H.dtype)
     return jnp.sum(coefficients[::-1] * powers, axis=-1) * a ** n
 
