@@ -223,7 +223,10 @@ def _start_worker(flags, core):
     without Python's finalization (about 1 s with JAX loaded, paid by every worker when the job
     closes its pools after the last stage; a worker's outputs are written by then)."""
     if core is not None:
-        os.sched_setaffinity(0, {core})
+        try:
+            os.sched_setaffinity(0, {core})
+        except OSError:      # a sandbox that forbids it: the worker shares the cores
+            pass
     _common.add_xla_flags(flags)
     gc.freeze()      # the modules the fork server imported: never garbage, out of the collector's passes
     atexit.register(_exit_now)
