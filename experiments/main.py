@@ -247,11 +247,16 @@ def _worker_context():
     """Workers forked from a server that has imported :data:`PRELOAD` (~1 s of imports once, not
     in every worker), where the platform has one; spawned (each importing anew) elsewhere.
     Never a plain fork of this process: JAX's runtime threads do not survive it."""
-    if "forkserver" not in multiprocessing.get_all_start_methods():
-        return multiprocessing.get_context("spawn")
-    ctx = multiprocessing.get_context("forkserver")
-    ctx.set_forkserver_preload(PRELOAD)
-    return ctx
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        from multiprocessing import forkserver
+        ctx = multiprocessing.get_context("forkserver")
+        ctx.set_forkserver_preload(PRELOAD)
+        try:
+            forkserver.ensure_running()
+            return ctx
+        except OSError:      # no server (e.g. no free file descriptors): spawned workers
+            pass
+    return multiprocessing.get_context("spawn")
 
 
 def _run_stages(names, out, quick, jobs, cache):
