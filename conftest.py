@@ -59,18 +59,11 @@ def pytest_configure(config):
 
 def _pin_worker():
     """A pytest-xdist worker on a core of its own when there are as many cores as workers, before
-    JAX's backend starts: XLA sizes its thread pools by the cores a process may use, and workers
-    free to use every core interrupt each other (the main job's stages: 7 % slower unpinned,
-    docs/benchmarks.md)."""
+    JAX's backend starts (:func:`experiments._common.pin_to_core`)."""
     worker, count = os.environ.get("PYTEST_XDIST_WORKER", ""), os.environ.get("PYTEST_XDIST_WORKER_COUNT", "")
-    if not (worker.startswith("gw") and count.isdigit() and hasattr(os, "sched_getaffinity")):
-        return
-    cores = sorted(os.sched_getaffinity(0))
-    if int(count) <= len(cores):
-        try:
-            os.sched_setaffinity(0, {cores[int(worker[2:]) % len(cores)]})
-        except OSError:      # a sandbox that forbids it: the worker shares the cores
-            pass
+    if worker.startswith("gw") and count.isdigit():
+        from experiments import _common
+        _common.pin_to_core(int(worker[2:]), int(count))
 
 
 jax.config.update("jax_enable_x64", True)

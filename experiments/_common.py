@@ -76,6 +76,26 @@ def classic_fusion_emitters_accepted() -> bool:
     return xla_flags_accepted((CLASSIC_FUSION_EMITTERS,))
 
 
+def pin_to_core(index: int, count: int) -> bool:
+    """Put this process on the ``index``-th of the cores it may use, if it may use at least
+    ``count`` (one process per core: ``count`` of them side by side); returns whether it did.
+    Call it before JAX's backend starts: XLA sizes its thread pools by the cores a process may
+    use, and processes free to use every core interrupt each other (a main-job stage beside
+    another: 7 % slower unpinned; docs/benchmarks.md). Not where the platform or a sandbox
+    forbids it."""
+    import os
+    if not hasattr(os, "sched_getaffinity"):
+        return False
+    cores = sorted(os.sched_getaffinity(0))
+    if count > len(cores):
+        return False
+    try:
+        os.sched_setaffinity(0, {cores[index % len(cores)]})
+    except OSError:
+        return False
+    return True
+
+
 def add_xla_flags(flags) -> None:
     """Add each of ``flags`` ("--name=value") to XLA_FLAGS in this process's environment
     (inherited by the processes it starts; effective for this one only before JAX's backend

@@ -218,15 +218,12 @@ def _run_stage(name, out, quick, cache, prefix=True):
         sys.stdout = stdout
 
 
-def _start_worker(flags, core):
-    """A worker process's set-up: CPU ``core`` alone (if not None), its XLA flags, and an end
-    without Python's finalization (about 1 s with JAX loaded, paid by every worker when the job
-    closes its pools after the last stage; a worker's outputs are written by then)."""
-    if core is not None:
-        try:
-            os.sched_setaffinity(0, {core})
-        except OSError:      # a sandbox that forbids it: the worker shares the cores
-            pass
+def _start_worker(flags, slot, slots):
+    """A worker process's set-up: the core of its ``slot`` of ``slots`` alone
+    (:func:`experiments._common.pin_to_core`), its XLA flags, and an end without Python's
+    finalization (about 1 s with JAX loaded, paid by every worker when the job closes its pools
+    after the last stage; a worker's outputs are written by then)."""
+    _common.pin_to_core(slot, slots)
     _common.add_xla_flags(flags)
     gc.freeze()      # the modules the fork server imported: never garbage, out of the collector's passes
     atexit.register(_exit_now)
@@ -272,12 +269,7 @@ def _run_stages(names, out, quick, jobs, cache):
             print(f"[{name}: {times[name]:.1f} s]", flush=True)
         return reports, times
     pending, running = list(names), {}
-    # ``jobs`` slots, each with a core of its own: XLA sizes a process's thread pools by the cores
-    # it may use when its backend starts, and two workers free to use both cores interrupt each
-    # other (a stage beside another 7 % slower than pinned; docs/benchmarks.md)
-    cores = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
-    core = {slot: cores[slot] if jobs <= len(cores) else None for slot in range(jobs)}
-    free = list(range(jobs))
+    free = list(range(jobs))        # slots, each with a core of its own where there are as many
     ctx = _worker_context()
     # one worker process per slot and set of XLA flags (XLA reads them when its backend starts),
     # which runs stage after stage of its set in its slot, its compiled programs shared by them
@@ -297,7 +289,7 @@ def _run_stages(names, out, quick, jobs, cache):
         k = key(name), slot
         if k not in pools:
             pools[k] = concurrent.futures.ProcessPoolExecutor(1, mp_context=ctx, initializer=_start_worker,
-                                                              initargs=(k[0], core[slot]))
+                                                              initargs=(k[0], slot, jobs))
         return pools[k]
 
     try:
