@@ -200,7 +200,7 @@ CASES = [
     ("roller-both-rigid", lambda: _roller(housing=None, shaft=None), r"housing and shaft cannot both be None"),
     ("roller-housing-type", lambda: _roller(housing="steel"), r"housing must be a vjax body"),
     ("roller-memory", lambda: _roller(memory="y"), r"memory must be one of"),
-    ("roller-temperature-without-shift", lambda: _roller(temperature=30.0), r"temperature and shift must be given together"),
+    ("roller-temperature-without-shift", lambda: _roller(temperature=30.0), r"temperature= moves no body"),
     ("roller-shift-type", lambda: _roller(temperature=30.0, shift="WLF"), r"shift must be a shift law"),
     ("roller-n-small", lambda: vjax.RollerOptions(n=8), r"n must be an integer >= 16"),
     ("roller-omega-nan", lambda: _roller(omega_shaft=NAN), r"omega_shaft must be finite"),

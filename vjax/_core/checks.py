@@ -6,6 +6,10 @@ tracers and are passed through unchecked (the solvers report non-convergence ins
 """
 from __future__ import annotations
 
+import os
+import sys
+import warnings
+
 import numpy as np
 import jax
 
@@ -96,3 +100,13 @@ def option_count(name: str, x, minimum: int = 1) -> None:
     """A static option that must be an integer >= ``minimum``."""
     if isinstance(x, bool) or not isinstance(x, (int, np.integer)) or x < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {x!r}")
+
+
+
+def deprecated(message: str) -> None:
+    """A DeprecationWarning pointing at the first caller outside vjax (however deep the call)."""
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep
+    frame, level = sys._getframe(1), 2
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, DeprecationWarning, stacklevel=level)

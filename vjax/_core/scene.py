@@ -46,15 +46,35 @@ class SceneResult:
         return f"{type(self).__name__}({self._describe(', ')})"
 
 
-def at_temperature(temperature, shift, *bodies):
-    """The bodies (None = rigid) at ``temperature`` (C) under ``shift``; both or neither."""
-    if (temperature is None) != (shift is None):
-        raise ValueError("temperature and shift must be given together (shift: a WLF/Arrhenius law)")
+def responds(body) -> bool:
+    """Whether a scene's ``temperature=`` moves this body: its material has a shift law and no
+    temperature of its own (None, a rigid body, does not)."""
+    return body is not None and body.material.shift is not None and body.material.temperature is None
+
+
+def at_temperature(temperature, shift, *bodies, oil: bool = False):
+    """The bodies (None = rigid) at the scene's ``temperature`` (C): each body whose material
+    has a shift law and no temperature of its own (:func:`responds`); the others keep theirs.
+
+    ``shift``: the 0.2 argument (a DeprecationWarning), the law of every material that has none.
+    ``oil``: the scene's lubricant takes ``temperature`` too, so no body needs to respond.
+    """
+    if shift is not None:
+        checks.deprecated("shift= is deprecated since vjax 0.3: give each material its law, "
+                          "material.with_shift(shift), and the scene temperature= alone")
+        if temperature is None:
+            raise ValueError("shift= needs temperature= (C): the temperature the materials are evaluated at")
+        bodies = tuple(b if b is None or b.material.shift is not None
+                       else dataclasses.replace(b, material=b.material.with_shift(shift)) for b in bodies)
     if temperature is None:
         return bodies
     checks.finite("temperature", temperature)
     checks.scalar("temperature", temperature)
-    return tuple(None if b is None else b.at_temperature(shift, temperature) for b in bodies)
+    if not oil and not any(responds(b) for b in bodies):
+        raise ValueError("temperature= moves no body: no material has a shift law of its own (give it one, "
+                         "material.with_shift(WLF(C1, C2, T_ref)), or put it at its temperature, "
+                         "material.at_temperature(T))")
+    return tuple(b.at_temperature(temperature) if responds(b) else b for b in bodies)
 
 
 def canonical(*values):

@@ -78,10 +78,10 @@ class Body:
         ref = 1.0 if self.ref_length is None else self.ref_length
         return land.whirl_symbol(self.kind, self.material, R, self.thickness, length, n, m, omega, whirl, ref)
 
-    def at_temperature(self, shift, T) -> "Body":
-        """The same body with its material at temperature ``T`` (C), see
-        :meth:`Material.at_temperature`."""
-        return dataclasses.replace(self, material=self.material.at_temperature(shift, T))
+    def at_temperature(self, T, *deprecated) -> "Body":
+        """The same body with its material at temperature ``T`` (C) under the material's own
+        shift law (:meth:`Material.at_temperature`; the 0.2 form ``(shift, T)`` warns)."""
+        return dataclasses.replace(self, material=self.material.at_temperature(T, *deprecated))
 
 
 def _with_ref_length(kind, material, ref_length, axial="slices"):

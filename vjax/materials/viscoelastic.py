@@ -21,8 +21,10 @@ consecutive poles and bisects in log|s|; polynomial root finding fails for spect
 span many decades.
 
 Time-temperature superposition (Section 1.2): E*(omega, T) = E*(a_T(T) omega, T_ref). With
-a Prony series this is a rescaling of the relaxation times, tau_k -> a_T tau_k, so
-:meth:`Material.at_temperature` returns another :class:`Material` that every scene accepts.
+a Prony series this is a rescaling of the relaxation times, tau_k -> a_T tau_k. A material
+carries its shift law (:meth:`Material.with_shift`) and the temperature its times hold at:
+:meth:`Material.at_temperature` returns the same material at another temperature, and a scene's
+``temperature=`` moves every body whose material has a law and no temperature of its own.
 """
 from __future__ import annotations
 
@@ -66,22 +68,33 @@ class Material:
     Attributes:
       E0: rubbery (relaxed) Young's modulus (Pa).
       moduli: Maxwell arm moduli E_k (Pa), shape (K,); K = 0 for an elastic material.
-      times: relaxation times tau_k (s), shape (K,).
+      times: relaxation times tau_k (s), shape (K,), at ``temperature``.
       nu: Poisson's ratio (plane strain Kolosov constant kappa = 3 - 4 nu).
+      shift: its time-temperature shift law (:class:`WLF`, :class:`Arrhenius`, or any object
+        with ``log10_aT(T)``), or None (the material does not change with temperature).
+      temperature: the temperature (C) at which ``times`` hold; None: the shift law's reference
+        temperature (or no law). A scene's ``temperature=`` moves only materials whose
+        temperature is None: a material put at its own temperature keeps it.
 
-    Build it with :meth:`elastic`, :meth:`sls` or :meth:`prony`; they check the values.
+    Build it with :meth:`elastic`, :meth:`sls` or :meth:`prony` (they check the values), give
+    it a shift law with :meth:`with_shift` and a temperature with :meth:`at_temperature`.
 
     >>> m = Material.sls(E0=1e6, Einf=1e7, tau=0.01, nu=0.5)
     >>> float(m.Einf)
     10000000.0
     >>> round(float(m.modulus(0.0).real))
     1000000
+    >>> hot = m.with_shift(WLF(8.86, 101.6, 20.0)).at_temperature(40.0)
+    >>> float(hot.temperature), round(float(hot.times[0]), 7)
+    (40.0, 0.0001773)
     """
 
     E0: jax.Array
     moduli: jax.Array
     times: jax.Array
     nu: jax.Array
+    shift: "WLF | Arrhenius | None" = None
+    temperature: jax.Array | None = None
 
     # ---- constructors -------------------------------------------------------------
     @classmethod
@@ -188,14 +201,43 @@ class Material:
         return _creep_spectrum(self, iterations)
 
     # ---- temperature --------------------------------------------------------------
-    def at_temperature(self, shift, T) -> "Material":
-        """The material at temperature ``T`` (C) given a shift law referred to its T_ref:
-        E*(omega, T) = E*(a_T(T) omega, T_ref), i.e. tau_k -> a_T(T) tau_k."""
-        if not callable(getattr(shift, "log10_aT", None)):
-            raise ValueError(f"shift must be a shift law with log10_aT (WLF, Arrhenius, a fitted table), "
-                             f"got {type(shift).__name__}")
-        aT = 10.0 ** shift.log10_aT(T)
-        return dataclasses.replace(self, times=self.times * aT)
+    def with_shift(self, shift) -> "Material":
+        """The same material with the time-temperature shift law ``shift`` (:class:`WLF`,
+        :class:`Arrhenius`, or any object with ``log10_aT(T)``), referred to the temperature at
+        which its ``times`` hold: the law's T_ref. Its own temperature is cleared (None)."""
+        _check_shift_law(shift)
+        return dataclasses.replace(self, shift=shift, temperature=None)
+
+    def at_temperature(self, T, *deprecated) -> "Material":
+        """The material at temperature ``T`` (C) under its own shift law:
+        E*(omega, T) = E*(a_T(T) omega, T_ref), i.e. tau_k -> a_T(T) tau_k (a_T relative to the
+        temperature its times hold at now). The result keeps its law and carries ``T`` as its
+        own temperature, so a scene's ``temperature=`` leaves it there.
+
+        The 0.2 form ``at_temperature(shift, T)`` still works for one version
+        (a DeprecationWarning): it is ``with_shift(shift).at_temperature(T)``.
+        """
+        if deprecated or (callable(getattr(T, "log10_aT", None))):
+            if len(deprecated) != 1:
+                raise TypeError("at_temperature takes the temperature T (C); the 0.2 form is at_temperature(shift, T)")
+            checks.deprecated("Material.at_temperature(shift, T) is deprecated since vjax 0.3: give the material its "
+                              "law once, material.with_shift(shift).at_temperature(T)")
+            return self.with_shift(T).at_temperature(deprecated[0])
+        if self.shift is None:
+            raise ValueError("at_temperature: this material has no shift law; give it one first, "
+                             "material.with_shift(WLF(C1, C2, T_ref)) (or Arrhenius(Ea, T_ref))")
+        checks.finite("T", T)
+        log_aT = self.shift.log10_aT(T)
+        if self.temperature is not None:
+            log_aT = log_aT - self.shift.log10_aT(self.temperature)
+        T = jnp.asarray(T, dtype=jnp.result_type(self.times))
+        return dataclasses.replace(self, times=self.times * 10.0 ** log_aT, temperature=T)
+
+
+def _check_shift_law(shift):
+    if not callable(getattr(shift, "log10_aT", None)):
+        raise ValueError(f"shift must be a shift law with log10_aT (WLF, Arrhenius, a fitted table), "
+                         f"got {type(shift).__name__}")
 
 
 @partial(jax.jit, static_argnums=1)

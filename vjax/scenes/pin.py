@@ -129,8 +129,10 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
       omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
         moves at :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
       memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.bodies.operator`).
-      temperature, shift: evaluate the material at ``temperature`` (C) with the shift law
-        ``shift`` (both or neither).
+      temperature: the housing's temperature (C), when its material has a shift law
+        (:meth:`~vjax.Material.with_shift`) and no temperature of its own.
+      shift: deprecated since 0.3 (a DeprecationWarning): the material's shift law; give the
+        material its own instead.
       initial: a :class:`PinResult` of the same pin (same n) at nearby parameters: the solve
         starts from its pressure and offset (fewer active-set steps; no derivative flows).
       options: :class:`PinOptions` (grid and contact solve; static).

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import math
 
-from ...materials.lubricant import Lubricant, as_lubricant
 from .finite import FiniteJournalResult, finite_journal_bearing
 from .finite.setup import check_supported
 from .long import JournalResult, long_journal_bearing
 from .options import FiniteJournalOptions, JournalOptions
+from .setup import oil_and_bodies
 
 
 def is_finite(length, tilt, supply_width) -> bool:
@@ -20,9 +20,9 @@ def is_finite(length, tilt, supply_width) -> bool:
 def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft=None, omega_shaft=0.0,
                     omega_housing=0.0, load_angle=-math.pi / 2, memory="periodic", cavitation: str = "reynolds",
                     supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
-                    shift=None, initial: JournalResult | FiniteJournalResult | None = None,
+                    oil_temperature=None, initial: JournalResult | FiniteJournalResult | None = None,
                     options: JournalOptions | FiniteJournalOptions | None = None, throw: bool = True, length=None,
-                    tilt=None, supply_width=1.0, roughness=None) -> JournalResult | FiniteJournalResult:
+                    tilt=None, supply_width=1.0, roughness=None, shift=None) -> JournalResult | FiniteJournalResult:
     """Steady state of an infinitely long (visco)elastic journal bearing under a given load.
 
     The equations, conventions and solver: :mod:`vjax.scenes.journal.long` (infinitely long)
@@ -33,7 +33,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     Args:
       R: bore radius R_B (m). radial_clearance: c = R_B - R_J (m), 0 < c < R.
       viscosity: lubricant viscosity eta (Pa s), isoviscous; or a :class:`~vjax.Lubricant` (or a
-        function of the temperature in C returning Pa s), evaluated at ``temperature``.
+        function of the temperature in C returning Pa s), evaluated at ``oil_temperature``
+        (default: ``temperature``).
       load: external force on the journal (N/m): a vector (Fx, Fy), or a magnitude with
         ``load_angle`` (rad, default -pi/2: downward).
       housing, shaft: bodies of the bearing and the journal: a :class:`~vjax.Material` (hole,
@@ -51,8 +52,12 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         of the infinitely long bearing) or "fixed" (in the bearing, as in a real bearing; the
         default of a finite one, which also takes "circumferential": a groove round the
         mid-width at ``supply_pressure``); see the module docstring.
-      temperature, shift: evaluate the materials at ``temperature`` (C) under ``shift``, and a
-        :class:`~vjax.Lubricant` ``viscosity`` at ``temperature`` (then ``shift`` may be None).
+      temperature: the bodies' temperature (C): each body whose material has a shift law
+        (:meth:`~vjax.Material.with_shift`) and no temperature of its own answers at it (a
+        material put at its own, :meth:`~vjax.Material.at_temperature`, keeps that); and the
+        oil's, unless ``oil_temperature`` is given.
+      oil_temperature: the :class:`~vjax.Lubricant`'s temperature (C), when it differs from
+        the bodies'.
       initial: a previous :class:`JournalResult` (same n) to start Newton from (sweeps).
       options: :class:`~vjax.JournalOptions` (grid, tolerance, iteration caps, strategy; static),
         or with ``length`` a :class:`~vjax.FiniteJournalOptions`; None: the film's defaults.
@@ -66,6 +71,8 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
         ``tilt`` (gamma_x, gamma_y) (rad), ``options`` is a :class:`~vjax.FiniteJournalOptions`,
         the bodies deform as plane-strain slices (each axial section as the ring under its own
         pressure); returns a :class:`~vjax.FiniteJournalResult` (SI totals).
+      shift: deprecated since 0.3 (a DeprecationWarning): the shift law of every material that
+        has none; give each material its own instead.
       roughness: a :class:`~vjax.Roughness` (the surfaces' rms roughness, asperities, composite
         modulus and boundary friction): mixed lubrication, Patir and Cheng's average flow with
         Greenwood and Tripp's asperity contact, from full film down to a journal that barely
@@ -80,13 +87,7 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     >>> bool(sol.converged), 0 < float(sol.eccentricity) < 1
     (True, True)
     """
-    if isinstance(viscosity, Lubricant) or callable(viscosity):
-        if temperature is None:
-            raise ValueError("viscosity: a Lubricant (or a function of the temperature) is evaluated at the bearing's "
-                             "temperature: give temperature= (C)")
-        viscosity = as_lubricant(viscosity).viscosity(temperature)
-        if shift is None:           # the temperature is the oil's; the bodies (if any) keep their materials
-            temperature = None
+    viscosity, temperature = oil_and_bodies(viscosity, temperature, oil_temperature, housing, shaft, shift)
     common = dict(housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
                   load_angle=load_angle, memory=memory, cavitation=cavitation, supply_angle=supply_angle,
                   supply_pressure=supply_pressure, temperature=temperature, shift=shift, initial=initial, throw=throw)

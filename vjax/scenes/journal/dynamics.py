@@ -40,6 +40,7 @@ from .finite.setup import check_supported
 from .long import JournalResult
 from .long.coefficients import long_coefficients
 from .options import FiniteJournalOptions, JournalOptions
+from .setup import oil_and_bodies
 
 
 __all__ = ["JournalCoefficients", "journal_coefficients", "lund", "stability_threshold"]
@@ -138,10 +139,9 @@ class JournalCoefficients:
 def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing=None, shaft=None,
                          omega_shaft=0.0, omega_housing=0.0, load_angle=-math.pi / 2, cavitation: str = "reynolds",
                          supply_angle=math.pi, supply_pressure=0.0, groove: str | None = None, temperature=None,
-                         shift=None,
-                         initial: JournalResult | FiniteJournalResult | None = None,
+                         oil_temperature=None, initial: JournalResult | FiniteJournalResult | None = None,
                          options: JournalOptions | FiniteJournalOptions | None = None, throw: bool = True, length=None,
-                         tilt=None, supply_width=1.0, roughness=None) -> JournalCoefficients:
+                         tilt=None, supply_width=1.0, roughness=None, shift=None) -> JournalCoefficients:
     """Stiffness and damping of a (visco)elastic journal bearing at whirl frequencies ``whirl``.
 
     The arguments are those of :func:`vjax.journal_bearing` (which solves the steady state,
@@ -169,6 +169,7 @@ def journal_coefficients(R, radial_clearance, viscosity, load, whirl, *, housing
     if whirl.ndim != 1:
         raise ValueError(f"whirl must be a number or a 1-D array of whirl frequencies (rad/s), got shape {whirl.shape}")
     checks.finite("whirl", whirl)
+    viscosity, temperature = oil_and_bodies(viscosity, temperature, oil_temperature, housing, shaft, shift)
     common = dict(housing=housing, shaft=shaft, omega_shaft=omega_shaft, omega_housing=omega_housing,
                   load_angle=load_angle, cavitation=cavitation, supply_angle=supply_angle,
                   supply_pressure=supply_pressure, temperature=temperature, shift=shift, initial=initial, throw=throw)

@@ -6,9 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..._core import checks, scene as _scene
-from ...bodies.body import as_body, check_fits, disc, hole
+from ...bodies.body import Body, as_body, check_fits, disc, hole
 from ...bodies.operator import memory_revolutions
 from ...films import reynolds
+from ...materials.lubricant import Lubricant, as_lubricant
+from ...materials.viscoelastic import Material
 
 HOUSINGS = ("hole", "liner", "half_plane")
 SHAFTS = ("disc", "sleeve", "half_plane")
@@ -43,6 +45,31 @@ def bodies_at(R, radial_clearance, housing, shaft, temperature, shift):
     check_fits("housing", housing, R)
     check_fits("shaft", shaft, R - radial_clearance)
     return _scene.at_temperature(temperature, shift, housing, shaft)
+
+
+def oil_and_bodies(viscosity, temperature, oil_temperature, housing, shaft, shift):
+    """The film's viscosity (Pa s) and the temperature the bodies are given (C, or None).
+
+    ``viscosity``: a number (Pa s: the oil at its own temperature), or a :class:`~vjax.Lubricant`
+    (or a function of the temperature in C returning Pa s) evaluated at ``oil_temperature``, or
+    at ``temperature`` when that is None. ``temperature`` moves the bodies whose materials carry
+    a shift law and no temperature of their own; when it set only the oil, none is passed on.
+    """
+    oil_T = temperature if oil_temperature is None else oil_temperature
+    if isinstance(viscosity, Lubricant) or callable(viscosity):
+        if oil_T is None:
+            raise ValueError("viscosity: a Lubricant (or a function of the temperature) is evaluated at the oil's "
+                             "temperature: give temperature= or oil_temperature= (C)")
+        checks.finite("oil_temperature" if oil_temperature is not None else "temperature", oil_T)
+        viscosity = as_lubricant(viscosity).viscosity(oil_T)
+        bodies = [b.material if isinstance(b, Body) else b for b in (housing, shaft)]
+        moved = any(isinstance(m, Material) and m.shift is not None and m.temperature is None for m in bodies)
+        if oil_temperature is None and shift is None and not moved:
+            temperature = None          # the temperature was the oil's alone
+    elif oil_temperature is not None:
+        raise ValueError("oil_temperature: the viscosity is a number (Pa s), the oil's at its own temperature; "
+                         "give a vjax.Lubricant to evaluate it at oil_temperature")
+    return viscosity, temperature
 
 
 def roughness_hint(thin: float) -> str:

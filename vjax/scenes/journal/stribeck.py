@@ -19,6 +19,7 @@ from ..._core import checks
 from .bearing import journal_bearing
 from .finite.steady import nests
 from .options import FiniteJournalOptions
+from .setup import oil_and_bodies
 
 LIFT_OFF_SHARE = 0.01     # the lift-off speed: where the asperities' share of the load falls to this
 
@@ -76,6 +77,8 @@ def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length=None,
     if speeds.size < 2 or not np.all(np.isfinite(speeds)) or not np.all(speeds > 0):
         raise ValueError(f"speeds must be two or more positive finite angular speeds (rad/s), got {speeds!r}")
     speed_name = "omega_shaft" if turning == "shaft" else "omega_housing"
+    eta, _ = oil_and_bodies(viscosity, kw.get("temperature"), kw.get("oil_temperature"), kw.get("housing"),
+                            kw.get("shaft"), None)     # the oil's viscosity (Pa s) for the Hersey number
 
     def solve(w, initial):
         return journal_bearing(R, radial_clearance, viscosity, load, length=length, roughness=roughness,
@@ -115,7 +118,7 @@ def stribeck_curve(R, radial_clearance, viscosity, load, speeds, *, length=None,
     mu = field("friction_coefficient")
     share = field("asperity_share")
     return StribeckCurve(
-        speed=speeds, hersey=np.asarray(viscosity, float) * speeds / p_mean, friction_coefficient=mu,
+        speed=speeds, hersey=float(eta) * speeds / p_mean, friction_coefficient=mu,
         friction_viscous=field("friction_viscous"), friction_boundary=field("friction_boundary"),
         asperity_share=share, eccentricity=field("eccentricity"), film_parameter=field("film_parameter"),
         converged=converged, result=np.array([int(np.asarray(r.result)) for r in results]), results=tuple(results),

@@ -275,8 +275,10 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
       omega_shaft, omega_housing: inner and outer ring speeds (rad/s); the patch speeds follow
         from pure rolling (:func:`roller_patch_speeds`).
       memory: "periodic" (default), "thesis" or a number of revolutions (:mod:`vjax.bodies.operator`).
-      temperature, shift: evaluate both materials at ``temperature`` (C) with the shift law
-        ``shift`` (:meth:`~vjax.Material.at_temperature`; both or neither).
+      temperature: the rings' temperature (C): each ring whose material has a shift law
+        (:meth:`~vjax.Material.with_shift`) and no temperature of its own answers at it.
+      shift: deprecated since 0.3 (a DeprecationWarning): the shift law of every material that
+        has none; give each material its own instead.
       initial: a :class:`RollerResult` of the same bearing at nearby parameters (e.g. the
         previous speed of a sweep): Newton starts from its deflections and the contact
         solves from its pressures. Only the speed of convergence depends on it. A result whose
