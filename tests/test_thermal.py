@@ -337,6 +337,17 @@ def test_journal_derivatives_through_the_thermal_root():
         assert abs(float(g) - fd) < 1e-6 * abs(fd), (k, float(g), fd)
 
 
+def test_runaway_raises_inside_jit_through_the_one_failure_path():
+    """Under jit the runaway raises from the core's host callback (vjax._core.solve.report), its
+    hint naming the cause and the traced temperatures: T_limit and the T reached (150 C), the
+    power generated against the power removed (hA 1e-6 W/(m K) x 110 K = 1.1e-4 W/m)."""
+    run = jax.jit(lambda hA: pin(thermal.HeatTransfer(T_IN, hA=hA, T_limit=150.0, oil_flow=False)).temperature)
+    with pytest.raises(Exception, match=r"thermal_pin's heat balance did not converge: ran past the bound .*This "
+                                        r"is thermal runaway: .* T_limit = 150 C; reached T = 150 C generating .* "
+                                        r"W against 0.00011 W removed\. More cooling"):
+        jax.block_until_ready(run(1e-6))
+
+
 def test_jit_and_vmap_go_through():
     f = jax.jit(jax.vmap(lambda hA: pin(thermal.HeatTransfer(T_IN, hA=hA, oil_flow=False)).temperature))
     T = f(jnp.array([0.5, 1.0]))
