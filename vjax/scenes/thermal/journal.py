@@ -26,9 +26,9 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     temperature T_eff (C), ISO 7902's global balance (docs/theory.md, "Thermal balance (level 1)"):
     the film isoviscous at eta(T_eff) of the :class:`~vjax.Lubricant` ``lubricant``, the bodies
     (``housing``, ``shaft``) at T_eff through ``shift`` (their materials' WLF/Arrhenius law;
-    None: temperature-independent), the heat -- film shear (:func:`vjax.films.shear.film_power`) and the bodies'
-    hysteresis -- carried off by the side leakage, T_out = T_in + P_oil / (rho c_p Q), T_eff =
-    (T_in + T_out) / 2 (no carry-over), and by ``heat.hA`` to ``heat.T_ambient``.
+    None: temperature-independent), the heat -- film shear (:func:`vjax.films.shear.film_power`)
+    and the bodies' hysteresis -- carried off by the side leakage, T_out = T_in + P_oil / (rho
+    c_p Q), T_eff = (T_in + T_out) / 2 (no carry-over), and by ``heat.hA`` to ``heat.T_ambient``.
 
     With ``roughness`` (mixed lubrication) the power is the scene's own ``power_loss``: Patir and
     Cheng's viscous shear over the whole land and the asperities' friction mu_b p_a times the
