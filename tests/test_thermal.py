@@ -299,6 +299,7 @@ def test_pin_balance_isothermal_limit_and_runaway():
         pin(thermal.HeatTransfer(T_IN, hA=1e-6, T_limit=150.0, oil_flow=False))
     r = pin(thermal.HeatTransfer(T_IN, hA=1e-6, T_limit=150.0, oil_flow=False), throw=False)
     assert int(r.result) == thermal.RUNAWAY and np.isfinite(float(r.temperature)) and float(r.temperature) == 150.0
+    assert "status: thermal runaway" in repr(r)
 
 
 def central(f, x, h):

@@ -116,7 +116,9 @@ class ThermalResult(_scene.SceneResult):
                  if f.name not in ("scene", "result") and checks.is_concrete(getattr(self, f.name))
                  and np.shape(getattr(self, f.name)) == ()]
         if checks.is_concrete(self.result) and np.shape(self.result) == ():
-            parts.append(f"status: {_solve.MESSAGES[int(self.result)]}")
+            code = int(self.result)
+            words = "thermal runaway: no steady state below T_limit" if code == _solve.RUNAWAY else _solve.MESSAGES[code]
+            parts.append(f"status: {words}")
         return sep.join(parts)
 
 

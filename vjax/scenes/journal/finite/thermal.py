@@ -134,7 +134,9 @@ class FilmTemperatureResult(_scene.SceneResult):
         parts = [f"{k}={np.asarray(getattr(self, k)).item():.6g}" for k in keys
                  if checks.is_concrete(getattr(self, k)) and np.shape(getattr(self, k)) == ()]
         if checks.is_concrete(self.result) and np.shape(self.result) == ():
-            parts.append(f"status: {_solve.MESSAGES[int(self.result)]}")
+            code = int(self.result)
+            words = "thermal runaway: the film passed T_limit" if code == _solve.RUNAWAY else _solve.MESSAGES[code]
+            parts.append(f"status: {words}")
         return sep.join(parts)
 
 
