@@ -1,10 +1,11 @@
-"""The solver core's Newton with kept (Broyden-updated) Jacobians, vjax._core.solve.newton(jacobian=)."""
+"""The solver core: Newton with kept (Broyden-updated) Jacobians, vjax._core.solve.newton(jacobian=);
+the rising root (vjax._core.root.rising_root) and the failure path's hint (vjax._core.solve.report)."""
 import jax
 import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from vjax._core import solve as _solve
+from vjax._core import root, solve as _solve
 
 A = jnp.array([[4.0, 1.0, 0.0], [1.0, 3.0, 0.5], [0.0, 0.5, 2.0]])
 B = jnp.array([1.0, -2.0, 0.5])
@@ -87,3 +88,50 @@ def test_stall_window_stops_a_creeping_newton_and_spares_a_converging_one():
     x, _, stats = _solve.newton(equations, jnp.zeros(3), 0, tol=1e-14, max_iter=50, stall_window=3)
     assert int(stats.result) == _solve.SUCCESS
     np.testing.assert_allclose(np.asarray(x), np.asarray(exact_root()), rtol=0, atol=1e-13)
+
+
+# ---- the rising root (vjax._core.root) and the failure path's hint -------------------------------------
+def substitution_diverges(x):
+    """r(x) = x - g(x), g(x) = 20 exp(-x / 2): g' ~ -1.75 at the root, where x <- g(x) diverges."""
+    return x - 20.0 * jnp.exp(-x / 2), jnp.asarray(True)
+
+
+def test_rising_root_against_brentq_eager_and_traced():
+    import scipy.optimize as so
+    ref = so.brentq(lambda x: x - 20.0 * np.exp(-x / 2), 0.0, 20.0, xtol=1e-15)
+    x, stats = root.rising_root(substitution_diverges, 0.0, 250.0, 1e-12, 60)
+    assert int(stats.result) == _solve.SUCCESS and abs(float(x) - ref) < 1e-11
+    xj, sj = jax.jit(lambda lo: root.rising_root(substitution_diverges, lo, 250.0, 1e-12, 60))(0.0)
+    assert float(xj) == float(x) and int(sj.iterations) == int(stats.iterations)
+    # an invalid point closes the bracket from above: the search goes back below it
+    x, stats = root.rising_root(lambda x: (x - 20.0 * jnp.exp(-x / 2), x < 3.6), 0.0, 250.0, 1e-12, 60)
+    assert int(stats.result) == _solve.SUCCESS and abs(float(x) - ref) < 1e-11
+
+
+def test_rising_root_reports_runaway_an_invalid_floor_and_its_iteration_limit():
+    x, stats = root.rising_root(lambda x: (-1.0 - 0.0 * x, jnp.asarray(True)), 0.0, 150.0, 1e-12, 60)
+    assert int(stats.result) == _solve.RUNAWAY and float(x) == 150.0
+    _, stats = root.rising_root(lambda x: (x - 1.0, x > 0.5), 0.0, 150.0, 1e-12, 60)
+    assert int(stats.result) == _solve.INNER_FAILED
+    _, stats = root.rising_root(substitution_diverges, 0.0, 250.0, 1e-12, 2)
+    assert int(stats.result) == _solve.MAX_ITERATIONS and int(stats.iterations) == 2
+
+
+def test_the_hint_names_the_failed_points_numbers_inside_and_outside_jit():
+    def hint(result, T, T_limit):
+        return f" Runaway: reached T = {T:.6g} C, T_limit = {T_limit:.6g} C." if result == _solve.RUNAWAY else " Other."
+
+    def run(T, result):
+        stats = _solve.Stats(jnp.full(jnp.shape(result), 3), jnp.full(jnp.shape(result), 0.5), result)
+        _solve.report("demo", stats, True, hint=hint, values=dict(T=T, T_limit=150.0))
+        return T
+
+    with pytest.raises(_solve.ConvergenceError, match=r"demo did not converge: ran past the bound .* after 3 "
+                                                       r"iterations.*Runaway: reached T = 150 C, T_limit = 150 C\.$"):
+        run(150.0, _solve.RUNAWAY)
+    run(150.0, _solve.SUCCESS)          # converged: nothing raised
+    with pytest.raises(Exception, match=r"Runaway: reached T = 151 C, T_limit = 150 C"):
+        jax.block_until_ready(jax.jit(run)(151.0, _solve.RUNAWAY))
+    # a batch: the first failed point's numbers
+    with pytest.raises(_solve.ConvergenceError, match=r"at 1 of 2 points \(first: flat index 1\).* reached T = 2 C"):
+        run(jnp.array([1.0, 2.0]), jnp.array([_solve.SUCCESS, _solve.RUNAWAY]))

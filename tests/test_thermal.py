@@ -299,6 +299,7 @@ def test_pin_balance_isothermal_limit_and_runaway():
         pin(thermal.HeatTransfer(T_IN, hA=1e-6, T_limit=150.0, oil_flow=False))
     r = pin(thermal.HeatTransfer(T_IN, hA=1e-6, T_limit=150.0, oil_flow=False), throw=False)
     assert int(r.result) == thermal.RUNAWAY and np.isfinite(float(r.temperature)) and float(r.temperature) == 150.0
+    assert "status: thermal runaway" in repr(r)
 
 
 def central(f, x, h):
@@ -335,6 +336,17 @@ def test_journal_derivatives_through_the_thermal_root():
         fd = central(lambda t: float(T_journal(*[t if i == k else (20.0, T_IN)[i] for i in range(2)])),
                      (20.0, T_IN)[k], h)
         assert abs(float(g) - fd) < 1e-6 * abs(fd), (k, float(g), fd)
+
+
+def test_runaway_raises_inside_jit_through_the_one_failure_path():
+    """Under jit the runaway raises from the core's host callback (vjax._core.solve.report), its
+    hint naming the cause and the traced temperatures: T_limit and the T reached (150 C), the
+    power generated against the power removed (hA 1e-6 W/(m K) x 110 K = 1.1e-4 W/m)."""
+    run = jax.jit(lambda hA: pin(thermal.HeatTransfer(T_IN, hA=hA, T_limit=150.0, oil_flow=False)).temperature)
+    with pytest.raises(Exception, match=r"thermal_pin's heat balance did not converge: ran past the bound .*This "
+                                        r"is thermal runaway: .* T_limit = 150 C; reached T = 150 C generating .* "
+                                        r"W against 0.00011 W removed\. More cooling"):
+        jax.block_until_ready(run(1e-6))
 
 
 def test_jit_and_vmap_go_through():

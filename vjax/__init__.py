@@ -28,7 +28,7 @@ from .films.roughness import Roughness
 from .scenes.pin import PinOptions, PinResult, pin_in_hole, pin_patch_speed, pin_shaft_speed
 from .scenes.roller import RollerOptions, RollerResult, roller_bearing, roller_patch_speeds
 from .scenes.thermal import HeatTransfer, ThermalResult, thermal_journal_bearing, thermal_pin, thermal_roller
-from .scenes.thermal_film import FilmHeat, FilmTemperatureResult, thermal_film_bearing
+from .scenes.journal.finite.thermal import FilmHeat, FilmTemperatureResult, thermal_film_bearing
 from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalCoefficients, JournalOptions,
                              JournalResult, StribeckCurve, journal_bearing, journal_coefficients,
                              stability_threshold, stribeck_curve, tilt_coefficients)

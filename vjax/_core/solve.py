@@ -10,10 +10,13 @@ One of each:
   :class:`ConvergenceError` naming it, outside ``jit`` directly and inside ``jit`` from a host
   callback (JAX then re-raises it wrapped in its runtime error, with the same message). Under
   ``vmap`` one failed point raises for the whole batch. ``throw=False`` only returns the flag.
+  Its hint names the physical cause and what the user can change, from the failed point's
+  numbers if need be (a thermal runaway's temperatures).
 - :func:`newton`: damped Newton with an Armijo backtracking line search.
 - :func:`implicit_root`: derivatives of a root by the implicit function theorem (forward and
   reverse mode, dense or matrix-free linear solve at the root), never through iterations.
-- :func:`bisect`: vectorized bisection of a bracketed root.
+- :func:`bisect`: vectorized bisection of a bracketed root (the root searched upwards for its
+  bracket, by secant steps: :func:`vjax._core.root.rising_root`).
 """
 from __future__ import annotations
 
@@ -25,12 +28,14 @@ import numpy as np
 
 from .checks import is_concrete
 
-# Result codes (``Stats.result``).
-SUCCESS, MAX_ITERATIONS, STALLED, NONFINITE, INNER_FAILED, NONPHYSICAL = range(6)
+# Result codes (``Stats.result``). RUNAWAY: the iterate passed the bound of its search with no
+# root below it (a heat balance's thermal runaway: the heat generated outgrowing the removed).
+SUCCESS, MAX_ITERATIONS, STALLED, NONFINITE, INNER_FAILED, NONPHYSICAL, RUNAWAY = range(7)
 MESSAGES = ("converged", "reached its iteration limit",
             "stalled (no decrease along the Newton step, or the residual stopped falling)",
             "produced non-finite values", "an inner solve failed",
-            "converged to the non-physical branch")
+            "converged to the non-physical branch",
+            "ran past the bound of its search with no root below it (a runaway)")
 
 
 class ConvergenceError(RuntimeError):
@@ -59,31 +64,40 @@ class Stats:
         return self.result == SUCCESS
 
 
-def _fail_message(what, result, iterations, residual, hint=""):
+def _fail_message(what, result, iterations, residual, values=None, hint=""):
     result, iterations, residual = (np.asarray(a) for a in (result, iterations, residual))
     bad = np.flatnonzero(result.ravel() != SUCCESS)
     if bad.size == 0:
         return None
     i = bad[0]
     where = f" at {bad.size} of {result.size} points (first: flat index {i})" if result.size > 1 else ""
+    if callable(hint):
+        point = {k: np.ravel(np.broadcast_to(np.asarray(v), result.shape))[i].item() for k, v in (values or {}).items()}
+        hint = hint(int(result.ravel()[i]), **point)
     return (f"{what} did not converge{where}: {MESSAGES[int(result.ravel()[i])]} after "
             f"{int(np.ravel(iterations)[i])} iterations, residual {float(np.ravel(residual)[i]):.3e}. "
             f"The error's .solution holds the unconverged result (outside jit), as throw=False would; "
             f"or change the options.{hint}")
 
 
-def _raise(what, result, iterations, residual, solution=None, hint=""):
-    message = _fail_message(what, result, iterations, residual, hint)
+def _raise(what, result, iterations, residual, values=None, solution=None, hint=""):
+    message = _fail_message(what, result, iterations, residual, values, hint)
     if message is not None:
         raise ConvergenceError(message, solution)
 
 
-def report(what: str, stats: Stats, throw: bool, hint: str = "") -> None:
+def report(what: str, stats: Stats, throw: bool, hint="", values=None) -> None:
     """Raise :class:`ConvergenceError` if ``stats`` failed and ``throw``; inside jit too.
-    ``hint``: a closing sentence for the message (what else the user could do)."""
+
+    ``stats``: a :class:`Stats`, or a scene's result record with its three fields (the error's
+    ``.solution`` outside jit). ``hint``: a closing sentence for the message (the cause, what
+    else the user could do), or a function ``hint(result, **point) -> str`` of the first failed
+    point's result code and ``values`` there: ``values`` a dict of arrays shaped as
+    ``stats.result`` (or broadcasting to it), passed to the host inside jit too, so that the
+    sentence can name the numbers the solve reached."""
     if not throw:
         return
-    args = (stats.result, stats.iterations, stats.residual)
+    args = (stats.result, stats.iterations, stats.residual, {} if values is None else dict(values))
     if is_concrete(args):
         _raise(what, *args, solution=stats, hint=hint)
     else:
