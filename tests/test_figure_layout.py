@@ -139,6 +139,11 @@ def test_fractional_ticks_of_whole_numbers():
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.axhline(0.5)          # in axes coordinates along x: not data
     assert _problems(fig) == []
+    fig, ax = plt.subplots(figsize=(4, 3), layout="constrained")
+    ax.plot([1.0, 10.0, 100.0], [3, 3, 3], "o-")     # the test bearing's count: 3 rollers at every speed
+    ax.set_xscale("log")                              # log axes are not questioned
+    found = _problems(fig)
+    assert _rules(found) == ["fractional ticks of whole numbers"] and "the y data" in found[0], found
 
 
 def test_tiny_text_on_a_very_wide_figure():

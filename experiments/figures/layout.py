@@ -16,7 +16,7 @@ drawn tick labels, offset texts, legend texts, annotations) and every visible le
    Proxy handles drawn nowhere (a legend of line styles) carry labels no drawn artist has
    and are not questioned;
 5. **fractional ticks of whole numbers**: a linear axis whose data (lines and scatter points
-   in data coordinates, at least three distinct values) are all whole numbers, but which
+   in data coordinates, at least three points) are all whole numbers, but which
    has a labelled tick between them (a roller count with a tick at 3.25);
 6. **small text**: a text smaller than :data:`MIN_TEXT_PX` pixels when the image is shown
    at most :data:`PAGE_WIDTH_PX` wide (a markdown page): a very wide figure with tiny text.
@@ -41,7 +41,7 @@ from matplotlib.text import Text
 __all__ = ["LayoutError", "problems", "render", "SLACK_PX", "MIN_TEXT_PX", "PAGE_WIDTH_PX"]
 
 SLACK_PX = 1.0          # overlaps and overhangs up to this are antialiasing, not a collision
-PAGE_WIDTH_PX = 900     # a figure is read at most this wide (a markdown page's column)
+PAGE_WIDTH_PX = 1000    # a figure is read at most this wide (a markdown page: GitHub shows ~980 px)
 MIN_TEXT_PX = 7.0       # smallest legible font size there (em height, pixels)
 
 
@@ -256,7 +256,7 @@ def _fractional_ticks(ax):
                 values.append(np.asarray(xy, float).reshape(-1, 2)[:, column])
         v = np.concatenate(values) if values else np.zeros(0)
         v = v[np.isfinite(v)]
-        if len(np.unique(v)) < 3 or np.any(np.abs(v - np.round(v)) > 1e-9 * np.maximum(1.0, np.abs(v))):
+        if len(v) < 3 or np.any(np.abs(v - np.round(v)) > 1e-9 * np.maximum(1.0, np.abs(v))):
             continue
         fractional = [t.label1.get_text() for t in _drawn_ticks(axis)
                       if _shown(t.label1) and abs(t.get_loc() - round(t.get_loc())) > 1e-9]
