@@ -236,16 +236,26 @@ def save_figure(fig, path, dpi: int = 150, close: bool = True) -> Path:
     """Save a matplotlib figure atomically (format from the suffix of ``path``); close it. A
     figure with a layout engine (``layout="constrained"``) is saved as laid out; one without
     is cropped to its artists (``bbox_inches="tight"``, which lays the figure out twice: a
-    third of the main job's drawing time)."""
+    third of the main job's drawing time).
+
+    The figure as saved is checked by :mod:`experiments.figures.layout` (no clipped text,
+    no overlapping labels, a legend only for what is drawn, whole-number ticks for whole
+    numbers, legible text): on a breach the file is written all the same (to look at) and
+    :class:`~experiments.figures.layout.LayoutError` names it with every problem."""
+    from experiments.figures import layout
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     try:
         tight = "tight" if fig.get_layout_engine() is None else None
-        return files.save_figure(fig, path, dpi=dpi, bbox_inches=tight)
+        data, found = layout.render(fig, path.suffix.lstrip(".") or "png", dpi=dpi, bbox_inches=tight)
+        files.write_atomic(path, data)
     finally:
         if close:
             import matplotlib.pyplot as plt
             plt.close(fig)
+    if found:
+        raise layout.LayoutError(path, found)
+    return path
 
 
 def _cell(x):

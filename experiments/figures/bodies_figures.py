@@ -32,6 +32,7 @@ _common.enable_x64()
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 import vjax  # noqa: E402
 from vjax import reference  # noqa: E402
@@ -87,9 +88,10 @@ def test_bearing(out, material, shift, quick):
             axes[1, j].semilogx(rpm, v[:, 1], style, label=name)
         axes[0, j].set_title(f"{F:g} N on {NEEDLE_LENGTH * 1e3:g} mm, {T:g} C", fontsize=9)
         axes[1, j].set_xlabel("shaft speed (rpm)")
+        axes[1, j].yaxis.set_major_locator(MaxNLocator(integer=True))     # a count of rollers
     axes[0, 0].set_ylabel(r"friction torque $C_t$ (N m/m)")
     axes[1, 0].set_ylabel("loaded rollers")
-    axes[0, 0].legend(fontsize=7)
+    axes[0, 0].legend(fontsize=8)
     fig.suptitle(f"Thesis test bearing: bore {2 * RO * 1e3:g} mm, 2 mm polymer bushing in a rigid holder (or an "
                  f"infinite plane), {Z} rigid needles of {D * 1e3:g} mm, rigid shaft; calibrated polymer", fontsize=9)
     _common.save_figure(fig, out / "bodies_test_bearing.png")
@@ -131,17 +133,22 @@ def water_journal(out, quick):
                       rows, comments=[f"R = {JR} m, c = {JC} m, water {WATER} Pa s, load {JLOAD} N/m, n = {n}; rubber "
                                       "SLS E0 5 MPa, Einf 50 MPa, tau 1 ms, nu 0.49; stationary shell"])
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), constrained_layout=True)
+    failed = [name for name in bodies if not np.isfinite(res[name][:, 0]).any()]
     for name, style in zip(bodies, ("k-o", "C1--s")):
+        if name in failed:       # in the legend only what is drawn; the title names the rest
+            continue
         v = res[name]
         axes[0].semilogx(speeds, v[:, 0], style, label=name)
         axes[1].semilogx(speeds, v[:, 1], style, label=name)
         axes[2].loglog(speeds, v[:, 2], style, label=name)
     for ax, lab in zip(axes, (r"$h_{min}/c$", r"$\epsilon_{eff}$", "friction torque on the shell (N m/m)")):
         ax.set(xlabel=r"shaft speed $\omega_J$ (rad/s)", ylabel=lab)
-    axes[0].legend(fontsize=7)
+    axes[0].legend(fontsize=8)
+    note = "missing points: no converged solution" + (f"; {' and '.join(failed)}: none at the speeds tried, not drawn"
+                                                      if failed else "")
     fig.suptitle(f"Water-lubricated journal bearing: R = {JR * 1e3:g} mm, c = {JC * 1e6:g} um, rubber liner "
-                 f"{LINER * 1e3:g} mm in a rigid shell vs an infinite rubber bore, {JLOAD:g} N/m (missing points: "
-                 "no converged solution)", fontsize=9)
+                 f"{LINER * 1e3:g} mm in a rigid shell vs an infinite rubber bore, {JLOAD:g} N/m\n{note}",
+                 fontsize=9)
     _common.save_figure(fig, out / "bodies_water_journal.png")
     return res, speeds, n
 

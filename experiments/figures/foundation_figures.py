@@ -161,7 +161,7 @@ def plot_ring_figure(kind, profiles, n, path, dpi):
                 ax.set_ylabel(r"$\tilde y = y/R$")
             ax.grid(alpha=0.3)
             if i == 0 and j == 0:
-                ax.legend(loc="lower left", fontsize=7)
+                ax.legend(loc="lower left", fontsize=9)
     name, title = FIGURES[kind]
     fig.suptitle(
         f"{title}: deformed profile under a unit pressure (1 Pa) on one element (red), magnified "

@@ -146,7 +146,11 @@ def _plot(path, sweeps):
                     ax.plot(W, np.asarray(A)[:, i, j], style, color=color,
                             label=f"{'xy'[i]}{'xy'[j]}, {label}")
                 ax.set_xscale("log")
-                ax.set_yscale("symlog", linthresh=float(np.abs(np.asarray(A)).max()) * 1e-3)
+                # linear below the power of ten under 1e-3 of the largest value: the decades the
+                # locator labels then start at the linear range's ends, a decade's height from
+                # 0 (a threshold off a power of ten puts a label inside it, crowding 0)
+                big = float(np.abs(np.asarray(A)).max())
+                ax.set_yscale("symlog", linthresh=10.0 ** np.floor(np.log10(big * 1e-3)))
                 ax.set_xlabel("whirl frequency Ω (rad/s)")
                 ax.set_ylabel(unit)
         axes[0, col].set_title(title, fontsize=10)
@@ -175,9 +179,9 @@ def main(out_dir="experiments/out", quick=False):
                        zip(np.asarray(thesis.whirl), np.asarray(thesis.stiffness), np.asarray(thesis.damping))],
                       comments=["thesis HS case per unit length: K in N/m^2, C in N s/m^2, absolute frame"])
     _plot(out / "dynamics_coefficients.png",
-          [(f"R = 50 mm, c = 50 µm, 100 rad/s, load {load:.3g} N/m: rigid (dashed) and a 2 mm polymer liner",
+          [(f"R = 50 mm, c = 50 µm, 100 rad/s, load {load:.3g} N/m:\nrigid (dashed) and a 2 mm polymer liner",
             [("rigid", liner["rigid"], "--"), ("liner", liner["polymer liner 2 mm"], "-")]),
-           ("thesis HS case (SLS bore, ω_B = 0.2, ω_J = -0.4 rad/s)", [("thesis", thesis, "-")])])
+           ("thesis HS case\n(SLS bore, ω_B = 0.2, ω_J = -0.4 rad/s)", [("thesis", thesis, "-")])])
     jfo = jfo_against_reynolds(64 if quick else 256, np.concatenate([[0.0], np.logspace(-1, 3, 9 if quick else 17)]))
     _plot_jfo(out / "dynamics_jfo.png", jfo)
     lines = [f"Rigid long bearing, pi film, n = {n}: max relative error against the closed forms "

@@ -29,8 +29,9 @@ The viscoelastic share is C_v,B / C_B with C_v,B the torque of the pressure on t
 bearing (= dissipated power / omega_B, Eq. 3.46) and C_B the total bearing torque (shear +
 C_v,B), both about O.
 
-Outputs (in ``out_dir``): ``fig3_4_ehl.png``, ``fig3_5_configurations.png``,
-``fig3_6_ss_contours.png``, ``fig3_7_hs_sweep_profiles.png``, ``fig3_8_hs_sweep_torques.png``,
+Outputs (in ``out_dir``; the finite-length figure drawn by :mod:`journal_finite_plot`):
+``fig3_4_ehl.png``, ``fig3_5_configurations.png``, ``fig3_6_ss_contours.png``,
+``fig3_7_hs_sweep_profiles.png``, ``fig3_8_hs_sweep_torques.png``,
 ``journal_fig3_4.csv``, ``journal_fig3_5.csv``, ``journal_fig3_7.csv``,
 ``journal_fig3_8.csv``, ``journal_ref_length.csv``, ``journal_finite_hs.png``,
 ``journal_finite_hs.csv``, ``journal_summary.txt``.
@@ -49,6 +50,8 @@ import sys
 from experiments import _common
 
 _common.enable_x64()
+
+from experiments.figures import journal_finite_plot  # noqa: E402
 
 import jax  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
@@ -274,12 +277,13 @@ def fig_3_7_3_8(out, n, speeds, hs):
     w = np.abs(np.asarray(speeds))
     for mem, ls in zip(MEMORIES, ("-", "--")):
         get = lambda key: np.array([table[(mem, wj)][key] for wj in speeds])  # noqa: E731
-        ax.plot(w, get("CJ_O"), "g" + ls, label=f"C~_J about O ({mem})")
-        ax.plot(w, get("CJ"), "g" + ls, alpha=0.4, label=f"C~_J about O' ({mem})")
-        ax.plot(w, get("CB"), "k" + ls, label=f"C~_B ({mem})")
-        axr.plot(w, get("eps"), "b" + ls, label=f"eps ({mem})")
-        bx.plot(w, get("CvB"), "k" + ls, label=f"C~_v,B ({mem})")
-        bxr.plot(w, get("share_pct"), "m" + ls, label=f"C_v,B / C_B [%] ({mem})")
+        first = mem == MEMORIES[0]         # one legend entry per quantity: the line style is the memory
+        ax.plot(w, get("CJ_O"), "g" + ls, label="C~_J about O" if first else None)
+        ax.plot(w, get("CJ"), "g" + ls, alpha=0.4, label="C~_J about O'" if first else None)
+        ax.plot(w, get("CB"), "k" + ls, label="C~_B" if first else None)
+        axr.plot(w, get("eps"), "b" + ls, label="eps (right axis)" if first else None)
+        bx.plot(w, get("CvB"), "k" + ls, label="C~_v,B" if first else None)
+        bxr.plot(w, get("share_pct"), "m" + ls, label="C_v,B / C_B [%] (right axis)" if first else None)
     ax.set_ylabel("torque / (|F| R_B)")
     axr.set_ylabel("eps", color="b")
     bx.set_ylabel("C~_v,B")
@@ -287,11 +291,13 @@ def fig_3_7_3_8(out, n, speeds, hs):
     bx.set_xlabel(r"$|\tilde\omega_J|$")
     for a in (ax, bx):
         a.set_xscale("log")
-    ax.legend(fontsize=6, loc="upper left")
-    axr.legend(fontsize=6, loc="upper right")
-    bx.legend(fontsize=6, loc="upper left")
-    bxr.legend(fontsize=6, loc="upper right")
-    fig.suptitle(f"Fig. 3.8: HS journal-speed sweep at fixed load; {CASE}", fontsize=9)
+    for left, right in ((ax, axr), (bx, bxr)):     # above the panel, off the curves
+        handles = [h for a in (left, right) for h in a.get_legend_handles_labels()[0]]
+        right.legend(handles, [h.get_label() for h in handles], fontsize=8, ncol=4, frameon=False,
+                     loc="lower left", bbox_to_anchor=(0.0, 1.0), borderaxespad=0.2)
+    case = CASE.replace("), ", "),\n", 1)        # on two lines: the figure is 8 in wide
+    fig.suptitle(f"Fig. 3.8: HS journal-speed sweep at fixed load; solid: {MEMORIES[0]} memory, dashed: "
+                 f"{MEMORIES[1]} memory\n{case}", fontsize=9)
     _common.save_figure(fig, out / "fig3_8_hs_sweep_torques.png")
     keys = list(next(iter(table.values())).keys())
     _common.write_csv(out / "journal_fig3_8.csv", ["memory", "omega_J_tilde"] + keys,
@@ -379,50 +385,7 @@ def finite_length(out, grid):
             released = float(np.sum(np.asarray(s.pressure)[:, 1:-1] * np.asarray(outflow)))
             balance[name] = abs(power_in + released - (float(s.power_loss) - WB * float(s.torque_viscoelastic))) \
                 / abs(power_in)
-    fig, axes = plt.subplots(1, 4, figsize=(21, 4.2), layout="constrained")
-    for name, s in sols.items():
-        h = np.asarray(s.film)
-        mid = h if h.ndim == 1 else h[:, h.shape[1] // 2]
-        theta = s.theta if name != "long" else s.theta + s.attitude_angle     # both from the load line
-        theta = np.mod(_deg(theta) + 180.0, 360.0) - 180.0
-        order = np.argsort(theta)
-        axes[0].plot(theta[order], mid[order] / C, label=f"{name}: eps = {rows[name]['eps']:.3f}, "
-                                                         f"min film {rows[name]['hmid_over_c']:.4f} c")
-        if name != "long":   # along the land at the thinnest angle: the film pinches at the ends
-            i = int(np.argmin(np.min(h, axis=1)))
-            z = np.asarray(s.z)
-            axes[1].plot(2 * z / (z[-1] - z[0]), h[i] / C, ".-", label=f"{name}, theta = {float(_deg(s.theta[i])):.0f} deg")
-    axes[0].set_xlabel("theta from the load line [deg]")
-    axes[0].set_ylabel("film h / c at the mid-plane")
-    axes[0].set_yscale("log")
-    axes[0].legend(fontsize=7)
-    axes[1].set_xlabel("2 z / L")
-    axes[1].set_ylabel("film h / c at its thinnest angle")
-    axes[1].legend(fontsize=7)
-    s = sols["L/D = 1"]
-    theta = np.mod(_deg(s.theta) + 180.0, 360.0) - 180.0
-    order = np.argsort(theta)
-    pressure = np.maximum(np.asarray(s.pressure)[order], 0.0) / E0
-    pm = axes[2].contourf(theta[order], np.asarray(s.z) * 1e3, pressure.T, np.linspace(0, pressure.max(), 16),
-                          cmap="viridis")
-    fig.colorbar(pm, ax=axes[2], label="p / E0", format="%.1e")
-    loaded = theta[order][np.max(pressure, axis=1) > 0.01 * pressure.max()]    # the narrow loaded arc
-    axes[2].set_xlim(loaded.min() - 10.0, loaded.max() + 10.0)
-    axes[2].set_xlabel("theta from the load line [deg]")
-    axes[2].set_ylabel("z [mm]")
-    axes[2].set_title("pressure over the land, L/D = 1", fontsize=9)
-    names = list(sols)
-    x = np.arange(len(names))
-    axes[3].bar(x - 0.2, [abs(rows[k]["CB"]) for k in names], 0.4, color="C0")
-    axes[3].set_ylabel("|bore torque| / (total load R_B)", color="C0")
-    share = axes[3].twinx()
-    share.bar(x + 0.2, [rows[k]["share_pct"] for k in names], 0.4, color="C1")
-    share.set_ylabel("viscoelastic share of the bore torque [%]", color="C1")
-    axes[3].set_xticks(x, names)
-    fig.suptitle("HS case of finite length beside the infinitely long bearing (the thesis's Hersey number, same mean "
-                 f"pressure, groove fixed opposite the load; finite bores: the hole in 3D, {grid[0]} x {grid[1]}); "
-                 f"{CASE}", fontsize=8)
-    _common.save_figure(fig, out / "journal_finite_hs.png")
+    journal_finite_plot.draw(out / "journal_finite_hs.png", sols, rows, grid, C, E0, CASE)
     _common.write_csv(out / "journal_finite_hs.csv", ["case"] + list(rows["long"]),
                       [[k] + list(v.values()) for k, v in rows.items()],
                       comments=[f"HS, periodic memory, the thesis's viscosity, long bearing n = 256, finite "

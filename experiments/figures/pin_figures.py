@@ -180,8 +180,8 @@ def persson_validation(out, quick):
         thw = np.angle(np.exp(1j * th))[o]
         ax.plot(thw, p_num[o] / E_EL, color=f"C{i}", lw=1.5, label=rf"$\tilde F$ = {Ft:g}")
         sel = o[(p_an[o] > 0)][:: max(1, n // 128)]
-        ax.plot(np.angle(np.exp(1j * th[sel])), p_an[sel] / E_EL, "o", ms=3.5, mfc="none", color="k")
-    ax.plot([], [], "o", mfc="none", color="k", label="analytical (vjax.reference)")
+        ax.plot(np.angle(np.exp(1j * th[sel])), p_an[sel] / E_EL, "o", ms=3.5, mfc="none", color="k",
+                label="analytical (vjax.reference)" if i == 0 else None)
     ax.set(xlabel="theta (rad)", ylabel="p~ = p / E", xlim=(-1.5, 1.5),
            title=f"Fig. 2.5: rigid pin, R = {R_EL} m, dR = {DR_EL:g} m, n = {n}")
     ax.legend(fontsize=8)
@@ -266,20 +266,20 @@ def viscoelastic(out, quick):
         if j == 0:
             ax.set_ylabel(r"$y/R$")
             axp.set_ylabel(r"$\tilde p = p/E_0$")
-            axp.legend(fontsize=7)
+            axp.legend(fontsize=8)
     fig.suptitle(f"Fig. 2.7: {CASE}.\nTop: hole contour at true scale (magnification 1; black dashed: undeformed), "
                  "pin (orange); bottom: pressure. Solid: periodic memory, dashed: thesis memory", fontsize=9)
     _common.save_figure(fig, out / "pin_fig2_7.png")
 
     def snapshots(draw, xlim, ylim):
         """One panel per snapshot speed: ``draw(ax, i)`` with i the index of that speed."""
-        fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.3), constrained_layout=True)
+        fig, axes = plt.subplots(1, len(SNAP_SPEEDS), figsize=(3.0 * len(SNAP_SPEEDS), 3.6), constrained_layout=True)
         for ax, w in zip(axes, SNAP_SPEEDS):
             i = _snap_index(speeds, w)
             draw(ax, i)
             ax.set(aspect="equal", xlim=xlim, ylim=ylim, title=rf"$\tilde\omega$ = {speeds[i]:g}", xlabel=r"$x/R$")
         axes[0].set_ylabel(r"$y/R$")
-        axes[0].legend(fontsize=7, loc="lower left")
+        axes[0].legend(fontsize=8, loc="lower left")
         return fig
 
     # Fig. 2.8: magnified contour (K = 10), whole hole

@@ -225,7 +225,7 @@ def fig_2_21(w, torque_res, out):
         ax.set_xlabel(r"$\tilde\omega$")
         ax.set_ylabel(yl)
         ax.set_ylim(bottom=1e-6)
-    axes[0].legend(fontsize=7)
+    axes[0].legend(fontsize=8)
     fig.suptitle("Fig. 2.21: outer ring, three loads, both memory models")
     _common.save_figure(fig, out / "roller_fig2_21.png")
 

@@ -54,7 +54,7 @@ def temperature_map(out):
         im = ax.contourf(theta, z, T.T, levels=np.linspace(lo, hi, 25), cmap="inferno")
         p = np.asarray(r.scene.pressure) / 1e6
         cs = ax.contour(theta, z, p.T, levels=np.linspace(0.5, p.max(), 5), colors="w", linewidths=0.6)
-        ax.clabel(cs, fmt="%.1f MPa", fontsize=6)
+        ax.clabel(cs, fmt="%.1f MPa", fontsize=7)
         ax.axvline(180.0, color="c", ls="--", lw=0.8)
         ax.set(xlabel="theta from the load line (deg), rotation +")
         ax.set_title(f"{name}: T_max {float(r.max_temperature):.1f} C, mean {float(r.mean_temperature):.1f} C",
