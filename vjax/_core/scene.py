@@ -47,9 +47,10 @@ class SceneResult:
 
 
 def responds(body) -> bool:
-    """Whether a scene's ``temperature=`` moves this body: its material has a shift law and no
-    temperature of its own (None, a rigid body, does not)."""
-    return body is not None and body.material.shift is not None and body.material.temperature is None
+    """Whether a scene's ``temperature=`` moves this body (a Body or a bare Material): its material
+    has a shift law and no temperature of its own (None, a rigid body, does not)."""
+    material = getattr(body, "material", body)
+    return body is not None and getattr(material, "shift", None) is not None and material.temperature is None
 
 
 def at_temperature(temperature, shift, *bodies, oil: bool = False):

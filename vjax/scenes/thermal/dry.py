@@ -30,12 +30,12 @@ def _dry(what, scene_fn, power_fn, heat, params, tol, max_iter, throw):
     return out
 
 
-def thermal_pin(housing, R, radial_clearance, load, heat: HeatTransfer, *, shift, omega_shaft=0.0,
+def thermal_pin(housing, R, radial_clearance, load, heat: HeatTransfer, *, shift=None, omega_shaft=0.0,
                 omega_housing=0.0, options=None, throw=True, tol=None, max_iter=60, **scene_arguments):
     """:func:`vjax.pin_in_hole` with the housing at the bulk temperature T (C) its own
     hysteresis sets: P(T) = -Omega torque (W/m, Omega the patch speed) = ``heat.hA`` (T -
     T_ambient) (hA in W/(m K), per unit axial length; no oil). The housing's material is
-    evaluated at T through ``shift``. Returns a :class:`~vjax.ThermalResult` (``scene``: a
+    evaluated at T through its own shift law (``shift``: the 0.2 form, deprecated). Returns a :class:`~vjax.ThermalResult` (``scene``: a
     :class:`~vjax.PinResult`); runaway and failures as :func:`vjax.thermal_journal_bearing`."""
     kw = dict(scene_arguments, **({} if options is None else dict(options=options)))
 
@@ -49,7 +49,7 @@ def thermal_pin(housing, R, radial_clearance, load, heat: HeatTransfer, *, shift
 
 
 def thermal_roller(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers, load, heat: HeatTransfer, *,
-                   shift, omega_shaft=0.0, omega_housing=0.0, options=None, throw=True, tol=None, max_iter=60,
+                   shift=None, omega_shaft=0.0, omega_housing=0.0, options=None, throw=True, tol=None, max_iter=60,
                    **scene_arguments):
     """:func:`vjax.roller_bearing` with both rings at the bulk temperature T (C) their
     hysteresis sets: P = Omega_O T_O + Omega_I T_I (W/m, Omega the patch speeds relative to

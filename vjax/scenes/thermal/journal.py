@@ -7,7 +7,7 @@ import math
 
 import jax
 
-from ..._core import checks
+from ..._core import checks, scene as _scene
 from ...films.shear import film_power
 from ...materials.lubricant import as_lubricant
 from ..journal.bearing import journal_bearing
@@ -58,7 +58,9 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
     if v is not None and not v > 0:
         raise ValueError("omega_shaft, omega_housing: the thermal balance is built for a positive entrainment speed "
                          "(omega_housing R + omega_shaft R_J > 0); turn the bearing the other way round")
-    deformable = housing is not None or shaft is not None
+    # the bodies follow T_eff when their materials carry shift laws (or through the 0.2 shift=)
+    deformable = (housing is not None or shaft is not None) and (
+        shift is not None or _scene.responds(housing) or _scene.responds(shaft))
     params = dict(R=R, c=radial_clearance, load=load, L=length, wJ=omega_shaft, wB=omega_housing, oil=lubricant,
                   heat=heat, housing=housing, shaft=shaft, shift=shift, rough=roughness)
     static_angle = None if supply_angle is None else float(supply_angle)
@@ -66,7 +68,7 @@ def thermal_journal_bearing(R, radial_clearance, lubricant, load, heat: HeatTran
 
     def balance(T, p):
         eta = p["oil"].viscosity(T)
-        at = dict(temperature=T, shift=p["shift"]) if deformable and p["shift"] is not None else {}
+        at = dict(temperature=T, shift=p["shift"]) if deformable else {}
         finite = {} if p["L"] is None else dict(length=p["L"], supply_width=supply_width)
         s = journal_bearing(p["R"], p["c"], eta, p["load"], housing=p["housing"], shaft=p["shaft"],
                             omega_shaft=p["wJ"], omega_housing=p["wB"], supply_angle=supply_angle, roughness=p["rough"],

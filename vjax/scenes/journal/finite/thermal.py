@@ -40,7 +40,7 @@ from ....materials.lubricant import as_lubricant
 from ..options import FiniteJournalOptions
 from . import setup as _finite_setup, steady as _steady
 from .outputs import outputs
-from .thermal_steady import (Static, area_mean, coupled_residual, energy_equation, film_params, first_temperatures,
+from .thermal_steady import (Static, moves, area_mean, coupled_residual, energy_equation, film_params, first_temperatures,
                              linear_solver, rounds)
 
 COARSE_TOL = 1e-6    # K: a nesting grid's coarse rounds are a start, off by the grids' difference (~0.1 K)
@@ -199,7 +199,7 @@ def thermal_film_bearing(R, radial_clearance, lubricant, load, heat: FilmHeat, *
             return _finish(_steady.refined(coarse.scene, pr0, cfg0), jax.lax.stop_gradient(T0), params, st, shape,
                            lubricant, heat, throw)
     # else from the isothermal film at the supply temperature and a mean-rise estimate (first_temperatures)
-    at = dict(temperature=heat.T_supply, shift=shift) if st.deformable and shift is not None else {}
+    at = dict(temperature=heat.T_supply, shift=shift) if st.deformable and moves(housing, shaft, shift) else {}
     cold = _steady.finite_journal_bearing(
         R, radial_clearance, lubricant.viscosity(heat.T_supply), load, length, housing=housing, shaft=shaft,
         omega_shaft=omega_shaft, omega_housing=omega_housing, load_angle=load_angle, cavitation=cavitation,

@@ -15,7 +15,7 @@ import math
 import jax
 import jax.numpy as jnp
 
-from ...._core import checks, krylov, solve as _solve, xla
+from ...._core import checks, krylov, scene as _scene, solve as _solve, xla
 from ....films import energy, film2d
 from ....films.shear import striated_fraction
 from ..options import FiniteJournalOptions
@@ -44,13 +44,19 @@ class Static:
     relax: float
 
 
+def moves(housing, shaft, shift) -> bool:
+    """Whether the bodies follow the film's temperature: their materials carry shift laws (or
+    the 0.2 ``shift=`` gives them one)."""
+    return shift is not None or _scene.responds(housing) or _scene.responds(shaft)
+
+
 def film_params(T_rise, params, st: Static):
     """The finite bearing's parameters with the viscosity at each node's temperature and the
     bodies at the mean, and its configuration."""
     heat, oil = params["heat"], params["oil"]
     T = heat.T_supply + T_rise
     body = {}
-    if st.deformable and params["shift"] is not None:
+    if st.deformable and moves(params["housing"], params["shaft"], params["shift"]):
         body = dict(temperature=heat.T_supply + area_mean(T_rise, params, st), shift=params["shift"])
     pr, cfg = _finite_setup.setup(params["R"], params["c"], oil.viscosity(heat.T_supply), params["load"], params["L"],
                                   housing=params["housing"], shaft=params["shaft"], omega_shaft=params["wJ"],
