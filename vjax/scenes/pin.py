@@ -124,13 +124,16 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
       housing: the housing's body: a :class:`~vjax.Material` (a hole in an infinite plane,
         :func:`~vjax.hole` with ``ref_length`` 1 m), a hole, or a :func:`~vjax.liner` (a
         bushing bonded into a rigid holder).
-      R: bore radius (m). radial_clearance: c = R - R_pin (m), 0 < c < R.
+      R: bore radius (m).
+      radial_clearance: c = R - R_pin (m), 0 < c < R.
       load: force on the pin (N/m), > 0, along ``load_angle`` (rad from the x axis).
-      omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
-        moves at :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
+      omega_shaft: angular velocity of the pin (rad/s).
+      omega_housing: angular velocity of the housing (rad/s); the patch moves at
+        :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
       memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.bodies.operator`).
-      temperature, shift: evaluate the material at ``temperature`` (C) with the shift law
+      temperature: evaluate the material at this temperature (C) with the shift law
         ``shift`` (both or neither).
+      shift: the shift law (:class:`~vjax.WLF`, :class:`~vjax.Arrhenius`) for ``temperature``.
       initial: a :class:`PinResult` of the same pin (same n) at nearby parameters: the solve
         starts from its pressure and offset (fewer active-set steps; no derivative flows).
       options: :class:`PinOptions` (grid and contact solve; static).
