@@ -56,7 +56,7 @@ __all__ += ["__version__"]
 
 # The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
 # their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still
-# import. New code should use the names above or the new paths (README, changelog).
+# import. New code should use the names above or the new paths (CHANGELOG.md, 0.2.0).
 from .bodies import operator as _operator
 from .materials import viscoelastic as _viscoelastic
 from .scenes import journal as _journal, pin as _pin, roller as _roller
