@@ -10,6 +10,7 @@ to be float64, so enable it **before any JAX computation**::
 Without it everything runs in float32 (no NaN, lower accuracy); vjax warns once on import.
 The command-line tools, experiments and tests enable float64 themselves.
 """
+import importlib.metadata as _metadata
 import sys as _sys
 import warnings as _warnings
 
@@ -35,6 +36,12 @@ from .scenes.journal import (FiniteJournalOptions, FiniteJournalResult, JournalC
 from . import reference
 from .sweep import initialize_processes, sweep
 
+try:
+    __version__ = _metadata.version("vjax")
+    """vjax's version: pyproject.toml's ``version`` as installed (``pip install -e .`` after changing it)."""
+except _metadata.PackageNotFoundError:          # imported from a source tree that was never installed
+    __version__ = "0+unknown"
+
 __all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lubricant", "RingOperator", "effective_compliance",
            "element_symbol", "grid", "ring_operator", "bodies", "green", "layer3d", "Body", "disc", "half_plane",
            "hole", "liner", "sleeve", "ConvergenceError", "ContactOptions", "ContactSolution", "solve_contact",
@@ -45,10 +52,11 @@ __all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lub
            "initialize_processes", "checks", "reynolds", "enable_compilation_cache", "Roughness", "StribeckCurve", "stribeck_curve"]
 __all__ += ["HeatTransfer", "ThermalResult", "thermal_journal_bearing", "thermal_pin", "thermal_roller"]
 __all__ += ["FilmHeat", "FilmTemperatureResult", "thermal_film_bearing"]
+__all__ += ["__version__"]
 
 # The flat module paths of vjax 0.1 (before the layer folders), kept working as aliases of
 # their new homes: ``from vjax.layer3d import layer_modes`` and ``vjax.journal_finite`` still
-# import. New code should use the names above or the new paths (README, changelog).
+# import. New code should use the names above or the new paths (CHANGELOG.md, 0.2.0).
 from .bodies import operator as _operator
 from .materials import viscoelastic as _viscoelastic
 from .scenes import journal as _journal, pin as _pin, roller as _roller

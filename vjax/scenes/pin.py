@@ -124,10 +124,12 @@ def pin_in_hole(housing, R, radial_clearance, load, *, omega_shaft=0.0, omega_ho
       housing: the housing's body: a :class:`~vjax.Material` (a hole in an infinite plane,
         :func:`~vjax.hole` with ``ref_length`` 1 m), a hole, or a :func:`~vjax.liner` (a
         bushing bonded into a rigid holder).
-      R: bore radius (m). radial_clearance: c = R - R_pin (m), 0 < c < R.
+      R: bore radius (m).
+      radial_clearance: c = R - R_pin (m), 0 < c < R.
       load: force on the pin (N/m), > 0, along ``load_angle`` (rad from the x axis).
-      omega_shaft, omega_housing: angular velocities of pin and housing (rad/s); the patch
-        moves at :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
+      omega_shaft: angular velocity of the pin (rad/s).
+      omega_housing: angular velocity of the housing (rad/s); the patch moves at
+        :func:`pin_patch_speed` relative to the housing (thesis omega~ = |Omega| tau).
       memory: "periodic" (default), "thesis" or revolutions (see :mod:`vjax.bodies.operator`).
       temperature: the housing's temperature (C), when its material has a shift law
         (:meth:`~vjax.Material.with_shift`) and no temperature of its own.

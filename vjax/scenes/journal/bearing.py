@@ -31,17 +31,20 @@ def journal_bearing(R, radial_clearance, viscosity, load, *, housing=None, shaft
     the rigid bearing.
 
     Args:
-      R: bore radius R_B (m). radial_clearance: c = R_B - R_J (m), 0 < c < R.
+      R: bore radius R_B (m).
+      radial_clearance: c = R_B - R_J (m), 0 < c < R.
       viscosity: lubricant viscosity eta (Pa s), isoviscous; or a :class:`~vjax.Lubricant` (or a
         function of the temperature in C returning Pa s), evaluated at ``oil_temperature``
         (default: ``temperature``).
       load: external force on the journal (N/m): a vector (Fx, Fy), or a magnitude with
         ``load_angle`` (rad, default -pi/2: downward).
-      housing, shaft: bodies of the bearing and the journal: a :class:`~vjax.Material` (hole,
-        resp. disc, with ``ref_length`` 1 m), a body (housing: hole, liner or half_plane; shaft:
-        disc, sleeve or half_plane), or None (rigid, the default).
-      omega_shaft, omega_housing: angular velocities of journal and bearing (rad/s, CCW > 0).
-        Their entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
+      housing: body of the bearing: a :class:`~vjax.Material` (a hole with ``ref_length``
+        1 m), a hole, liner or half_plane, or None (rigid, the default).
+      shaft: body of the journal: a :class:`~vjax.Material` (a disc with ``ref_length`` 1 m),
+        a disc, sleeve or half_plane, or None (rigid, the default).
+      omega_shaft: angular velocity of the journal, omega_J (rad/s, CCW > 0).
+      omega_housing: angular velocity of the bearing, omega_B (rad/s, CCW > 0). The
+        entrainment speed v = (omega_B R_B + omega_J R_J)/2 must not be zero.
       memory: "periodic", "thesis" or a number of revolutions (see :mod:`vjax.bodies.operator`).
       cavitation: "reynolds" (default), "jfo" (mass-conserving), "half_sommerfeld" or
         "sommerfeld".

@@ -69,7 +69,7 @@ class FiniteJournalOptions:
     (Krylov above KRYLOV_MIN_CELLS cells). Rigid bodies: the exact block solve, or GMRES with a
     multigrid V-cycle on grids wider than EXACT_WIDTH cells (:func:`linear_model`). The default
     64 x 16 is for a quick look; K and C under Reynolds conditions change by at most 0.33% from
-    128 x 32 to the next grid and 0.06% from 256 x 64 (README, grid study)."""
+    128 x 32 to the next grid and 0.06% from 256 x 64 (docs/benchmarks_history.md, grid study)."""
 
     n: int = 64
     m: int = 16

@@ -261,19 +261,22 @@ def roller_bearing(housing, shaft, R_outer, R_inner, roller_diameter, n_rollers:
     """Needle roller bearing: load sharing, ring deformation and viscoelastic friction torque.
 
     Args:
-      housing, shaft: bodies of the outer ring and the inner ring: a :class:`~vjax.Material`
-        (outer: a hole in an infinite plane, A.45; inner: a disc fixed at its centre, A.60),
-        a body (housing: hole or :func:`~vjax.liner`; shaft: disc or :func:`~vjax.sleeve`), or
-        ``None`` for a rigid ring (not both).
-      R_outer, R_inner: raceway radii R_O > R_I (m). roller_diameter: D (m).
+      housing: body of the outer ring: a :class:`~vjax.Material` (a hole in an infinite
+        plane, A.45), a hole or a :func:`~vjax.liner`, or ``None`` for a rigid ring.
+      shaft: body of the inner ring: a :class:`~vjax.Material` (a disc fixed at its centre,
+        A.60), a disc or a :func:`~vjax.sleeve`, or ``None`` for a rigid ring (not both).
+      R_outer: outer raceway radius R_O > R_I (m).
+      R_inner: inner raceway radius R_I (m).
+      roller_diameter: D (m).
       n_rollers: Z (static), equally spaced; they must fit on the pitch circle.
       load: radial load on the inner ring (N/m), > 0, along ``load_angle`` (rad).
       diametral_clearance: P_d (m), default 2 (R_O - R_I - D) (Eq. 2.26); negative means
         preload; it must exceed -D. When given, the contact uses rollers of diameter
         R_O - R_I - P_d/2 (matched sets), so it takes precedence over ``roller_diameter``.
       roller_angle: angle of roller 1 (rad), default ``load_angle`` (a roller on the load line).
-      omega_shaft, omega_housing: inner and outer ring speeds (rad/s); the patch speeds follow
-        from pure rolling (:func:`roller_patch_speeds`).
+      omega_shaft: inner ring speed (rad/s).
+      omega_housing: outer ring speed (rad/s); the patch speeds follow from pure rolling
+        (:func:`roller_patch_speeds`).
       memory: "periodic" (default), "thesis" or a number of revolutions (:mod:`vjax.bodies.operator`).
       temperature: the rings' temperature (C): each ring whose material has a shift law
         (:meth:`~vjax.Material.with_shift`) and no temperature of its own answers at it.
