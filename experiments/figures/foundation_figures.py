@@ -129,7 +129,7 @@ def plot_ring_figure(kind, profiles, n, path, dpi):
     fine = np.linspace(0, 2 * np.pi, 721)
     mems = sorted({m for m, _ in profiles}, key=MEMORIES.index)
     wts = sorted({w for _, w in profiles})
-    fig, axes = plt.subplots(len(mems), len(wts), figsize=(3.3 * len(wts), 3.5 * len(mems) + 0.9),
+    fig, axes = plt.subplots(len(mems), len(wts), figsize=(max(3.3 * len(wts), 11.0), 4.0 * len(mems) + 1.3),
                              squeeze=False, layout="constrained")
     s = OUTWARD[kind]
     lim = 1.1 + max(0.0, s * MAGNIFICATION * max(float(np.max(s * u)) for u in profiles.values()) / R)
@@ -166,7 +166,7 @@ def plot_ring_figure(kind, profiles, n, path, dpi):
     fig.suptitle(
         f"{title}: deformed profile under a unit pressure (1 Pa) on one element (red), magnified "
         f"K = {MAGNIFICATION:.0e}\nSLS $E_0$ = 1 MPa, $E_\\infty$ = 10 MPa, $\\tau$ = 0.01 s, "
-        f"$\\nu$ = 0.5; R = {R} m, N = {n} ($\\alpha$ = {np.pi / n:.3g} rad). Red arrow: pattern "
+        f"$\\nu$ = 0.5; R = {R} m, N = {n} ($\\alpha$ = {np.pi / n:.3g} rad).\nRed arrow: pattern "
         r"moves towards $+\theta$ ($\omega > 0$); trailing edge at $\theta < 0$."
         "\nRows: memory model \"periodic\" (exact steady state) and \"thesis\" "
         "(Eq. 2.14/2.16, one revolution).", fontsize=10)
@@ -194,12 +194,12 @@ def plot_profiles_u_theta(all_profiles, n, path, dpi):
             ax.set_title(f"{FIGURES[kind][1].split(':')[0]} ({kind}), memory = \"{mem}\"", fontsize=10)
             ax.set_ylabel("u (nm), positive into the body")
             ax.grid(alpha=0.3)
-            ax.text(0.02, 0.95, "trailing edge", transform=ax.transAxes, va="top", fontsize=8)
-            ax.text(0.98, 0.95, "leading edge", transform=ax.transAxes, va="top", ha="right", fontsize=8)
+            ax.text(0.02, 0.95, "trailing edge", transform=ax.transAxes, va="top", fontsize=9)
+            ax.text(0.98, 0.95, "leading edge", transform=ax.transAxes, va="top", ha="right", fontsize=9)
             if i == len(kinds) - 1:
                 ax.set_xlabel(r"$\theta$ (deg); pattern moves towards $+\theta$")
             if i == 0 and j == 0:
-                ax.legend(fontsize=8, loc="center right")
+                ax.legend(fontsize=9, loc="center right")
     fig.suptitle("Radial displacement u($\\theta$) under 1 Pa on one element (shaded), SLS "
                  "$E_0$ = 1 MPa, $E_\\infty$ = 10 MPa, $\\tau$ = 0.01 s, $\\nu$ = 0.5, "
                  f"R = {R} m, N = {n}  (Eq. 2.18)", fontsize=10)
@@ -253,7 +253,7 @@ def plot_materials(omega, curves, spectra, path, dpi):
     for a in ax.flat:
         a.grid(alpha=0.3, which="both")
     for a, loc in zip(ax.flat, ("upper left", "lower center", "upper right", "lower right")):
-        a.legend(fontsize=8, loc=loc)
+        a.legend(fontsize=9, loc=loc)
     fig.suptitle(r"Material laws: $E^*(\omega) = E_0 + \sum_k E_k\, i\omega\tau_k/(1+i\omega\tau_k)$;  "
                  r"$1/E^* = J_0 + \sum_k C_k/(1+i\omega\lambda_k)$", fontsize=11)
     return _common.save_figure(fig, path, dpi=dpi)

@@ -86,7 +86,7 @@ class Material:
     1000000
     >>> hot = m.with_shift(WLF(8.86, 101.6, 20.0)).at_temperature(40.0)
     >>> float(hot.temperature), round(float(hot.times[0]), 7)
-    (40.0, 0.0001773)
+    (40.0, 0.0003489)
     """
 
     E0: jax.Array
