@@ -53,6 +53,7 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 import argparse  # noqa: E402
 import atexit
 import concurrent.futures
+from concurrent.futures.process import BrokenProcessPool
 import gc
 import importlib
 import io
@@ -300,15 +301,23 @@ def _run_stages(names, out, quick, jobs, cache):
                 pending.remove(name)
                 slot = free.pop(0)
                 print(f"=== {name} (started) ===", flush=True)
-                running[pool(name, slot).submit(_run_stage, name, out, quick, cache)] = name, slot
+                running[pool(name, slot).submit(_run_stage, name, out, quick, cache)] = name, slot, (key(name), slot)
             waiting = list(running) + ([] if probe.done() else [probe])
             done, _ = concurrent.futures.wait(waiting, return_when=concurrent.futures.FIRST_COMPLETED)
             for future in done:
                 if future is probe:
                     continue
-                name, slot = running.pop(future)
+                name, slot, k = running.pop(future)
                 free.append(slot)
-                reports[name], times[name] = future.result()      # a stage that raised stops the job
+                try:
+                    reports[name], times[name] = future.result()      # a stage that raised stops the job
+                except BrokenProcessPool:
+                    # its worker died (killed, out of memory, a crash in compiled code): once
+                    # more here, and the next stage of its set in a new worker
+                    print(f"[{name}: its worker process ended abruptly; running the stage again in this process]",
+                          flush=True)
+                    pools.pop(k).shutdown(wait=False)
+                    reports[name], times[name] = _run_stage(name, out, quick, cache)
                 print(f"[{name}: {times[name]:.1f} s]", flush=True)
     finally:
         # every pool told first (stages not started are cancelled), then waited for: their workers
