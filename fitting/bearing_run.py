@@ -9,8 +9,10 @@ public API is used: ``journal_bearing`` (``length=`` for the finite bearing),
 
 Definitions (docs/bearing_files.md): the *friction torque* is the torque on the stationary
 body, positive when it is dragged along (what a torque arm on it measures); the *friction
-coefficient* is the friction torque over load x radius (bore radius; a roller bearing's inner
-raceway, the catalogues' mu = 2 M / (F d)); the *viscoelastic share* is the fraction of the
+coefficient* of a journal bearing is the library's, the journal's friction force over the load
+(Raimondi and Boyd's f; the housing's torque differs from the journal's by the load times the
+eccentricity's moment arm), and of a dry contact the friction torque over load x radius (bore
+radius; a roller bearing's inner raceway, the catalogues' mu = 2 M / (F d)); the *viscoelastic share* is the fraction of the
 power put in that the bodies' hysteresis takes (the rest heats the film; 1 for the dry
 contacts, where all friction is hysteresis).
 """
@@ -49,7 +51,7 @@ class Point:
 def _body(vjax, b, T):
     if b.kind == "rigid":
         return None
-    mat = b.material if b.shift is None or T is None else b.material.at_temperature(b.shift, T)
+    mat = b.material if b.shift is None or T is None else b.material.with_shift(b.shift).at_temperature(T)
     if b.kind in ("liner", "sleeve"):
         return getattr(vjax, b.kind)(mat, b.thickness)
     return getattr(vjax, b.kind)(mat, ref_length=b.ref_length)
@@ -127,7 +129,7 @@ def _row(case, p: Point, r, eta):
     power = -w_h * T_h - w_s * T_s
     radius = g["R_inner"] if c.scene == "roller" else g["R"]
     row.update({f"torque_housing_{tu}": T_h, f"torque_shaft_{tu}": T_s, f"friction_torque_{tu}": friction,
-                "friction_coefficient": friction / (load_out * radius),
+                "friction_coefficient": f(r.friction_coefficient) if c.journal else friction / (load_out * radius),
                 "power_W" if total else "power_W_per_m": power,
                 "iterations": int(np.asarray(r.iterations)), "residual": f(r.residual)})
     if c.journal:

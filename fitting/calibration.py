@@ -27,7 +27,7 @@ import time
 import numpy as np
 
 from vjax import checks
-from vjax.material import Material
+from vjax import Material
 
 from . import compact, dma, evaluate, io, master, prony, relaxation, spectrum
 from .evaluate import tensile_over_shear

@@ -21,7 +21,10 @@ from .case_table import REQUIRED, CaseError, Table, positive_quantity, sweep
 __all__ = ["Case", "Body", "CaseError", "load_case", "SCENES"]
 
 SCENES = ("finite_journal", "long_journal", "roller", "pin")
-_DEFAULT_N = {"finite_journal": 32, "long_journal": 256, "roller": 512, "pin": 512}
+# the library's own defaults (vjax.FiniteJournalOptions, JournalOptions, RollerOptions,
+# PinOptions; tests/test_bearing_cli.py keeps them equal): one default, stated once
+_DEFAULT_N = {"finite_journal": 64, "long_journal": 256, "roller": 1024, "pin": 1024}
+_DEFAULT_M = 16
 _BODY_KINDS = {"housing": ("rigid", "hole", "liner", "half_plane"), "shaft": ("rigid", "disc", "sleeve", "half_plane")}
 
 
@@ -265,7 +268,7 @@ def load_case(path, overrides=()) -> Case:
     for side, b in (("housing", housing), ("shaft", shaft)):
         for T in temperatures if b.shift is not None else ():
             try:                                 # a shift law's own range (a fitted table's)
-                times = np.asarray(b.material.at_temperature(b.shift, T).times)
+                times = np.asarray(b.material.with_shift(b.shift).at_temperature(T).times)
                 why = "" if np.all(np.isfinite(times) & (times > 0)) else ": relaxation times not finite"
             except ValueError as e:
                 why = f": {e}"
@@ -279,7 +282,7 @@ def load_case(path, overrides=()) -> Case:
 
     g = root.table("grid", None) or Table({}, "grid", path)
     n = g.number("n", _DEFAULT_N[scene], lo=8, integer=True)
-    m = g.number("m", 8, lo=2, integer=True) if scene == "finite_journal" else None
+    m = g.number("m", _DEFAULT_M, lo=2, integer=True) if scene == "finite_journal" else None
     g.close()
     whirl = (1.0,)
     co = root.table("coefficients", None)

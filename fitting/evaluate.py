@@ -6,8 +6,8 @@ plots. Through JAX, each of these is a function traced and lowered once per proc
 persistent compilation cache of the command-line tools skips only XLA's compilation): about
 0.4 s of a cached ``vjax-fit`` call. The same formulas in numpy take microseconds.
 
-The formulas are those of :class:`vjax.material.Material` (Prony series), :class:`~vjax.material.WLF`,
-:class:`~vjax.material.Arrhenius` and :class:`fitting.master.ShiftTable` (the table's
+The formulas are those of :class:`vjax.Material` (Prony series), :class:`~vjax.WLF`,
+:class:`~vjax.Arrhenius` and :class:`fitting.master.ShiftTable` (the table's
 interpolation as :meth:`~fitting.master.ShiftTable.log10_aT` computes it); any other law is evaluated
 through one jitted function. Importing this module does not import vjax or JAX (so that
 :mod:`fitting.plots` does not either; see :mod:`fitting`).
@@ -49,7 +49,8 @@ def _jitted(method):
 def log10_aT(law, T) -> np.ndarray:
     """log10 a_T of the shift law ``law`` at the temperatures ``T`` (C), a float array. A WLF
     law refuses temperatures at or below its asymptote, as its own method does."""
-    from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
+    from vjax import Arrhenius, WLF
+    from vjax.materials import GAS_CONSTANT, KELVIN
     T = _float(T)
     if hasattr(law, "values") and hasattr(law, "T"):     # a fitting.master.ShiftTable (not imported:
         return table_log10_aT(_float(law.T), _float(law.values), T)   # master imports this module)

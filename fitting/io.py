@@ -26,7 +26,7 @@ import os
 
 import numpy as np
 
-from vjax.material import Arrhenius, Material, WLF
+from vjax import Arrhenius, Material, WLF
 
 from .files import write_atomic as atomic_write
 from .master import ShiftTable

@@ -26,16 +26,10 @@ import functools
 import hashlib
 import os
 
-__all__ = ["cache_dir", "enable", "add_argument", "call"]
+__all__ = ["enable", "add_argument", "call"]
 
 _exported_dir = None    # <cache>/exported once enable() has turned the cache on
 _programs = {}          # path -> jax.export.Exported, loaded or exported in this process
-
-
-def cache_dir() -> str:
-    """The cache directory: $XDG_CACHE_HOME/vjax/jax or ~/.cache/vjax/jax."""
-    from vjax._core.cache import default_cache_dir
-    return default_cache_dir()
 
 
 def enable(disabled: bool = False):
@@ -46,7 +40,7 @@ def enable(disabled: bool = False):
         return None
     import vjax
     try:
-        path = vjax.enable_compilation_cache(cache_dir())
+        path = vjax.enable_compilation_cache()    # $XDG_CACHE_HOME/vjax/jax or ~/.cache/vjax/jax
     except ValueError:
         return None
     global _exported_dir

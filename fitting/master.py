@@ -18,7 +18,7 @@ master curve at T_ref. Hotter sweeps have a_T < 1 (log10 a_T < 0).
 4. The curve is referred to T_ref: at a measured temperature L(T_ref) = 0 exactly; between
    or beyond measured temperatures, L(T_ref) is interpolated (extrapolated) linearly in T.
 
-:func:`fit_wlf` and :func:`fit_arrhenius` fit the shift laws of :mod:`vjax.material` to
+:func:`fit_wlf` and :func:`fit_arrhenius` fit the shift laws of vjax (:class:`vjax.WLF`, :class:`vjax.Arrhenius`) to
 these factors; :class:`ShiftTable` is the "table" law (user-given or measured factors).
 """
 from __future__ import annotations
@@ -32,7 +32,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, WLF
+from vjax import Arrhenius, WLF
+from vjax.materials import GAS_CONSTANT, KELVIN
 
 from .dma import DMATable, DMAFormatError
 from .evaluate import table_log10_aT

@@ -45,7 +45,8 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from vjax.material import GAS_CONSTANT, KELVIN, Arrhenius, Material, WLF
+from vjax import Arrhenius, Material, WLF
+from vjax.materials import GAS_CONSTANT, KELVIN
 
 from . import optim, evaluate
 from .evaluate import raw_errors

@@ -43,7 +43,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from vjax.material import Material
+from vjax import Material
 
 from . import evaluate, jax_cache, optim
 from .evaluate import count_extrema, loss_extrema

@@ -65,7 +65,7 @@ import jax.numpy as jnp
 import numpy as np
 
 import vjax
-from vjax.material import Material, WLF
+from vjax import Material, WLF
 
 from . import optim
 
@@ -223,7 +223,8 @@ def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, 
 
     def model(material, shift, rpm, T, load, hA=None):
         kw = dict(omega_shaft=rpm * (2 * jnp.pi / 60.0), diametral_clearance=diametral_clearance, memory=memory,
-                  shift=shift, options=options, throw=False)
+                  options=options, throw=False)
+        material = _with_law(material, shift)
         hA = heat_transfer if hA is None else hA
         if hA is None:
             r = vjax.roller_bearing(material, material, R_outer, R_inner, roller_diameter, n_rollers, load,
@@ -237,6 +238,12 @@ def roller_model(R_outer=6e-3, R_inner=4e-3, roller_diameter=2e-3, n_rollers=9, 
                    f"memory={memory!r}, diametral_clearance={diametral_clearance}"
                    + _heat_text(heat_transfer, "W/(m K)") + ")")
     return model
+
+
+def _with_law(material, shift):
+    """The fitted material with the fitted shift law as its own (the scenes' one material
+    state): the data's temperature T then moves it."""
+    return material if shift is None else material.with_shift(shift)
 
 
 def _check_heat(hA):
@@ -262,7 +269,8 @@ def pin_model(R=0.01, radial_clearance=1e-4, n=128, memory="periodic", heat_tran
     _check_heat(heat_transfer)
 
     def model(material, shift, rpm, T, load, hA=None):
-        kw = dict(omega_shaft=rpm * (2 * jnp.pi / 60.0), memory=memory, shift=shift, options=options, throw=False)
+        kw = dict(omega_shaft=rpm * (2 * jnp.pi / 60.0), memory=memory, options=options, throw=False)
+        material = _with_law(material, shift)
         hA = heat_transfer if hA is None else hA
         if hA is None:
             r = vjax.pin_in_hole(material, R, radial_clearance, load, temperature=T, **kw)
@@ -280,8 +288,8 @@ def water_viscosity(T):
     """Dynamic viscosity of water (Pa s) at ``T`` (C), Vogel's equation
     eta = 2.414e-5 * 10^(247.8 / (T + 273.15 - 140)) (1.00e-3 at 20 C, 0.65e-3 at 40 C,
     0.40e-3 at 70 C; within 1 % of IAPWS's from 10 to 100 C): :meth:`Lubricant.water
-    <vjax.materials.lubricant.Lubricant.water>`'s viscosity."""
-    from vjax.materials.lubricant import Lubricant
+    <vjax.Lubricant.water>`'s viscosity."""
+    from vjax import Lubricant
     return Lubricant.water().viscosity(T)
 
 
@@ -292,10 +300,10 @@ def oil_viscosity(nu40, nu100, density=860.0, specific_heat=2000.0):
     sheet's), times its ``density`` (kg/m^3, held constant). An ISO VG 32 oil of viscosity
     index about 100: ``oil_viscosity(32, 5.4)``, 0.0275 Pa s at 40 C and 0.0096 at 70 C.
     Traceable in T (jit, grad). The function delegates to (and carries as ``.lubricant``) a
-    :meth:`Lubricant.walther <vjax.materials.lubricant.Lubricant.walther>`, with the oil's
+    :meth:`Lubricant.walther <vjax.Lubricant.walther>`, with the oil's
     ``specific_heat`` (J/(kg K), default 2000, a mineral oil's) for the thermal balance."""
     from vjax import checks
-    from vjax.materials.lubricant import Lubricant
+    from vjax import Lubricant
     for name, v in (("nu40", nu40), ("nu100", nu100), ("density", density), ("specific_heat", specific_heat)):
         checks.positive(name, v)
     if not nu100 < nu40:
@@ -375,7 +383,7 @@ def journal_model(R=0.025, radial_clearance=5e-5, length=0.05, thickness=0.01, v
     def model(material, shift, rpm, T, load, mu_b=None, sigma=None, hA=None):
         w = rpm * (2 * jnp.pi / 60.0)
         speeds = dict(omega_housing=w) if turning == "liner" else dict(omega_shaft=w)
-        kw = dict(length=length, housing=vjax.liner(material, thickness), memory=memory, shift=shift,
+        kw = dict(length=length, housing=vjax.liner(_with_law(material, shift), thickness), memory=memory,
                   options=options, throw=False, supply_angle=supply_angle, **speeds)
         hA = heat_transfer if hA is None else hA
         rough = roughness
@@ -409,7 +417,7 @@ def _lubricant(viscosity):
     """The :class:`vjax.Lubricant` behind ``viscosity`` for the thermal balance: itself, an
     :func:`oil_viscosity`'s, water's for :func:`water_viscosity`, a constant one for a number
     (no heat carried by the oil then: hA alone)."""
-    from vjax.materials.lubricant import Lubricant
+    from vjax import Lubricant
     if isinstance(viscosity, Lubricant):
         return viscosity
     if getattr(viscosity, "lubricant", None) is not None:

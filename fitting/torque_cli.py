@@ -217,7 +217,7 @@ def main(argv=None) -> int:
     jax.config.update("jax_enable_x64", True)
     jax_cache.enable(args.no_cache)
     import numpy as np
-    from vjax.material import WLF
+    from vjax import WLF
 
     from . import io
     from . import torque as ft

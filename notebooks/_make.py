@@ -83,15 +83,16 @@ for f in report.outputs:
         display(Image(filename=f))
 mat2, shift2, kind = fitting.load_material(json_path)
 print("reloaded:", kind, "E0 =", float(mat2.E0), "Pa,", mat2.moduli.shape[0], "terms,", type(shift2).__name__)'''),
-    ("md", "## Use it in a scene\n\nEvery scene takes `temperature=` and `shift=` (the material at 60 C "
-           "alone is `material.at_temperature(shift, 60.0)`). Friction torque of a polymer pin joint "
+    ("md", "## Use it in a scene\n\nThe material takes its shift law once, `mat2.with_shift(shift2)`; every "
+           "scene's `temperature=` then moves it (the material alone at 60 C is "
+           "`mat2.with_shift(shift2).at_temperature(60.0)`). Friction torque of a polymer pin joint "
            "(rigid pin in a plate of this material) versus shaft speed, vmapped over speeds:"),
     ("code", '''R, R_pin = 0.01, 0.0099
 load = 1e-2 * float(mat2.E0) * R
 rpm = np.geomspace(10, 3000, 20)
 def torque(rpm_, T):
-    return vjax.pin_in_hole(mat2, R, R - R_pin, load, omega_shaft=rpm_ * 2 * np.pi / 60, temperature=T,
-                            shift=shift2, options=vjax.PinOptions(n=256), throw=False).torque
+    return vjax.pin_in_hole(mat2.with_shift(shift2), R, R - R_pin, load, omega_shaft=rpm_ * 2 * np.pi / 60,
+                            temperature=T, options=vjax.PinOptions(n=256), throw=False).torque
 fig, ax = plt.subplots()
 for T in (40.0, 70.0):
     tq = jax.jit(jax.vmap(lambda s: torque(s, T)))(jnp.asarray(rpm))

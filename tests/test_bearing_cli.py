@@ -247,3 +247,56 @@ def test_viscoelastic_share_against_the_dissipations(tmp_path, capsys):
     share = float(row["viscoelastic_share"])
     assert 1e-5 < share < 1
     assert share == pytest.approx(float(r.dissipation_housing) / total, rel=1e-6)
+
+
+def test_default_grids_are_the_librarys():
+    # one default, stated once: a case file without [grid] solves on the scene's own default
+    import vjax
+    from fitting import case
+    assert case._DEFAULT_N == {"finite_journal": vjax.FiniteJournalOptions().n, "long_journal": vjax.JournalOptions().n,
+                               "roller": vjax.RollerOptions().n, "pin": vjax.PinOptions().n}
+    assert case._DEFAULT_M == vjax.FiniteJournalOptions().m
+
+
+# Raimondi and Boyd (ASLE Trans. 1, 1958), L/D = 1, Reynolds conditions, the film from its
+# maximum: (eps, S, attitude deg, (R/c) f), as tests/test_journal_finite.py's table
+RAIMONDI_BOYD_LD1 = [(0.4, 0.264, 63.10, 5.79), (0.6, 0.121, 50.58, 3.22)]
+
+
+@pytest.mark.parametrize("eps, S, phi, f", RAIMONDI_BOYD_LD1)
+def test_friction_coefficient_is_raimondi_and_boyds(tmp_path, capsys, eps, S, phi, f):
+    """A rigid bearing written from docs/bearing_files.md alone, on the default grid: the tool's
+    friction coefficient is the journal's, (R/c) f within 4 % of the table; the housing's
+    torque over W R is not: it is short by the load's moment arm e sin(phi)."""
+    R, c, L, eta, N = 0.02, 4e-5, 0.04, 0.03, 50.0
+    W = (R / c) ** 2 * eta * N * 2 * R * L / S
+    case = f"""
+[case]
+scene = "finite_journal"
+name = "rb"
+
+[geometry]
+bore_radius = "{R * 1e3} mm"
+radial_clearance = "{c * 1e6} um"
+length = "{L * 1e3} mm"
+supply_angle = "{180 + phi} deg"
+
+[lubricant]
+viscosity = "{eta} Pa s"
+
+[operating]
+speed = "{N * 60} rpm"
+load = "{W} N"
+"""
+    path = tmp_path / "rb.toml"
+    path.write_text(case)
+    code, _, err = _run(capsys, path, "--out", tmp_path / "out")
+    assert code == 0, err
+    (row,) = list(csv.DictReader(open(tmp_path / "out" / "rb" / "points.csv")))
+    assert float(row["eccentricity"]) == pytest.approx(eps, abs=0.01)
+    assert float(row["friction_coefficient"]) * R / c == pytest.approx(f, rel=0.04)
+    # the housing's torque is the journal's less the load's moment arm W e sin(phi) (the moment
+    # balance of the film): the two agree only when e sin(phi) << f R
+    housing = float(row["friction_torque_Nm"]) / (W * R) * R / c
+    arm = float(row["eccentricity"]) * math.sin(math.radians(float(row["attitude_deg"])))
+    assert housing == pytest.approx(float(row["friction_coefficient"]) * R / c - arm, rel=0.01)

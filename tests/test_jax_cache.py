@@ -28,10 +28,11 @@ def _files(path):
 
 
 def test_cache_dir_follows_xdg(monkeypatch):
+    from vjax._core.cache import default_cache_dir
     monkeypatch.setenv("XDG_CACHE_HOME", "/some/where")
-    assert jax_cache.cache_dir() == os.path.join("/some/where", "vjax", "jax")
+    assert default_cache_dir() == os.path.join("/some/where", "vjax", "jax")
     monkeypatch.delenv("XDG_CACHE_HOME")
-    assert jax_cache.cache_dir() == os.path.join(os.path.expanduser("~"), ".cache", "vjax", "jax")
+    assert default_cache_dir() == os.path.join(os.path.expanduser("~"), ".cache", "vjax", "jax")
 
 
 def test_small_compilations_are_stored_and_switches_turn_it_off(tmp_path):

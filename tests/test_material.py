@@ -89,7 +89,7 @@ def test_shift_laws_and_tts():
     expected = 100e3 / (8.314462618 * np.log(10)) * (1 / 303.15 - 1 / 293.15)
     assert np.isclose(arr.log10_aT(30.0), expected)
     m = Material.sls(1e6, 1e7, 0.01, 0.5)
-    hot = m.at_temperature(wlf, 40.0)
+    hot = m.with_shift(wlf).at_temperature(40.0)
     aT = 10 ** float(wlf.log10_aT(40.0))
     w = np.logspace(-3, 5, 9)
     assert np.allclose(hot.modulus(w), m.modulus(aT * w), rtol=1e-12)

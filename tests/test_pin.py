@@ -140,7 +140,7 @@ def test_patch_speed_is_that_of_rolling_without_slip():
 def test_gradient_with_respect_to_the_shift_law_matches_central_differences():
     """The torque at 40 C through a WLF law referred to the material's 20 C."""
     def torque(shift):
-        return pin_in_hole(SLS, R, C, LOAD, omega_shaft=shaft_speed(0.5 / TAU), temperature=40.0, shift=shift,
+        return pin_in_hole(SLS.with_shift(shift), R, C, LOAD, omega_shaft=shaft_speed(0.5 / TAU), temperature=40.0,
                            options=PinOptions(n=256)).torque
 
     wlf = WLF(8.86, 101.6, 20.0)

@@ -82,9 +82,9 @@ def test_creep_spectrum_of_a_60_term_series_over_24_decades():
 def test_at_temperature_is_a_frequency_shift(m, T, w, law):
     shift = WLF(8.86, 101.6, 25.0) if law == "WLF" else Arrhenius(2e5, 25.0)
     aT = 10.0 ** float(shift.log10_aT(T))
-    hot = m.at_temperature(shift, T)
+    hot = m.with_shift(shift).at_temperature(T)
     np.testing.assert_allclose(complex(hot.modulus(w)), complex(m.modulus(aT * w)), rtol=1e-10)
-    same = m.at_temperature(shift, 25.0)
+    same = m.with_shift(shift).at_temperature(25.0)
     np.testing.assert_allclose(np.asarray(same.times), np.asarray(m.times), rtol=1e-15)
     # hotter is faster (shorter relaxation times), colder slower
     assert (aT <= 1.0) if T >= 25.0 else (aT >= 1.0)

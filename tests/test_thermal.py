@@ -277,7 +277,7 @@ PIN = dict(R=0.01, radial_clearance=2e-4, load=2e4)
 
 
 def pin(heat, shift=vjax.WLF(8.86, 101.6, 40.0), material=SLS, **kw):
-    return thermal.thermal_pin(material, PIN["R"], PIN["radial_clearance"], PIN["load"], heat, shift=shift,
+    return thermal.thermal_pin(material.with_shift(shift), PIN["R"], PIN["radial_clearance"], PIN["load"], heat,
                                omega_shaft=kw.pop("omega_shaft", 5.0), options=PIN_OPT, **kw)
 
 
@@ -286,12 +286,12 @@ def test_pin_balance_isothermal_limit_and_runaway():
     assert bool(r.converged) and float(r.temperature) > T_IN + 1.0
     assert abs(float(r.power - r.heat_convected)) < 1e-10 * float(r.power)
     # the housing at T is the isothermal pin at T
-    iso = vjax.pin_in_hole(SLS, PIN["R"], PIN["radial_clearance"], PIN["load"], omega_shaft=5.0,
-                           temperature=r.temperature, shift=vjax.WLF(8.86, 101.6, 40.0), options=PIN_OPT)
+    iso = vjax.pin_in_hole(SLS.with_shift(vjax.WLF(8.86, 101.6, 40.0)), PIN["R"], PIN["radial_clearance"],
+                           PIN["load"], omega_shaft=5.0, temperature=r.temperature, options=PIN_OPT)
     assert abs(float(iso.torque - r.scene.torque)) <= 1e-10 * abs(float(iso.torque))
     cold = pin(thermal.HeatTransfer(T_IN, hA=jnp.inf, oil_flow=False))
-    iso = vjax.pin_in_hole(SLS, PIN["R"], PIN["radial_clearance"], PIN["load"], omega_shaft=5.0,
-                           temperature=T_IN, shift=vjax.WLF(8.86, 101.6, 40.0), options=PIN_OPT)
+    iso = vjax.pin_in_hole(SLS.with_shift(vjax.WLF(8.86, 101.6, 40.0)), PIN["R"], PIN["radial_clearance"],
+                           PIN["load"], omega_shaft=5.0, temperature=T_IN, options=PIN_OPT)
     assert float(cold.temperature) == T_IN
     assert np.max(np.abs(np.asarray(cold.scene.pressure - iso.pressure))) <= 1e-10 * float(np.max(iso.pressure))
     # no removal at all: runaway, named, with the temperature reached; throw=False reports it

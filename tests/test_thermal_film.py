@@ -150,9 +150,9 @@ def test_polymer_liner_sits_at_the_films_mean_temperature():
     still closes, and the hot liner, nearer its rubbery modulus, deforms more than the same
     liner held at its reference temperature (and conforms: the journal sits lower in its
     film's eccentricity, not higher)."""
-    liner = vjax.liner(vjax.Material.sls(1.5e9, 4e9, 1e-3, 0.4), 3e-3)
-    shift = vjax.WLF(8.86, 101.6, 40.0)
-    hot = bearing(vjax.FilmHeat(T_supply=40.0), housing=liner, shift=shift, omega_housing=OMEGA)
+    material = vjax.Material.sls(1.5e9, 4e9, 1e-3, 0.4)
+    liner, hot_liner = vjax.liner(material, 3e-3), vjax.liner(material.with_shift(vjax.WLF(8.86, 101.6, 40.0)), 3e-3)
+    hot = bearing(vjax.FilmHeat(T_supply=40.0), housing=hot_liner, omega_housing=OMEGA)
     held = bearing(vjax.FilmHeat(T_supply=40.0), housing=liner, omega_housing=OMEGA)
     assert float(hot.power_bodies) > 0
     assert abs(float(hot.heat_ends + hot.heat_groove + hot.heat_bush + hot.heat_journal) / float(hot.power) - 1) < 1e-10

@@ -57,6 +57,7 @@ def _material(out):
 def test_bearing(out, material, shift, quick):
     n = 256 if quick else 1024
     rpm = np.geomspace(1.0, 3000.0, 5 if quick else 14)
+    material = material.with_shift(shift)      # moved by each row's temperature
     models = {"bushing (liner, 2 mm)": vjax.liner(material, WALL),
               "infinite plane, l = 1 m": vjax.hole(material, 1.0),
               "infinite plane, l = R_O": vjax.hole(material, RO)}
@@ -67,7 +68,7 @@ def test_bearing(out, material, shift, quick):
                 prev, out_rows = None, []
                 for N in rpm:
                     r = vjax.roller_bearing(body, None, RO, RI, D, Z, F / NEEDLE_LENGTH, omega_shaft=N * np.pi / 30,
-                                            temperature=T, shift=shift, initial=prev,
+                                            temperature=T, initial=prev,
                                             options=vjax.RollerOptions(n=n), throw=False)
                     prev = r if bool(r.converged) else None
                     loads = np.asarray(r.roller_loads)[0]       # numpy: indexing a jax array compiles

@@ -42,8 +42,8 @@ W = 1e6 * L * D                           # N: 1 MPa specific load
 T_IN, HA = 40.0, 5.0                      # supply and ambient (C); housing and shaft conductance (W/K)
 OIL = vjax.Lubricant.walther(32.0, 5.34, 40.0, 100.0, rho=874.0, c_p=1949.0)
 SHIFT = vjax.WLF(8.86, 101.6, 40.0)
-LINER = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4), 2e-3)
-BEARING = dict(length=L, housing=LINER, shift=SHIFT, options=vjax.FiniteJournalOptions(n=32, m=8))
+LINER = vjax.liner(vjax.Material.sls(0.3e9, 3e9, 1e-3, 0.4).with_shift(SHIFT), 2e-3)
+BEARING = dict(length=L, housing=LINER, options=vjax.FiniteJournalOptions(n=32, m=8))
 RPM = (1000.0, 2000.0, 4000.0, 8000.0)
 
 

@@ -353,7 +353,7 @@ def thermal_design(out, quick=False):
     def f(y, hA):
         LD, c = jnp.exp(y[0]), jnp.exp(y[1])
         r = vjax.thermal_journal_bearing(R, c, oil, W, vjax.HeatTransfer(T_in, hA=hA), length=LD * 2 * R,
-                                         housing=vjax.liner(liner, cfg["t_liner"]), shift=shift, omega_housing=omega,
+                                         housing=vjax.liner(liner.with_shift(shift), cfg["t_liner"]), omega_housing=omega,
                                          options=options, throw=False)
         v = jnp.stack([r.power, r.temperature, r.scene.min_film])
         return v, (v, r.converged)
@@ -552,8 +552,9 @@ def roller_design(out, quick=False):
         """(mean torque N m/m, peak pressure Pa, max roller load N/m) at y = (P_d um, R_I mm)."""
         def one(w, t):
             Pd, RI = y[0] * 1e-6, y[1] * 1e-3
-            r = vjax.roller_bearing(mat, mat, RI + c["D"] + Pd / 2, RI, c["D"], Z, c["load"], diametral_clearance=Pd,
-                                    omega_shaft=w, temperature=t, shift=shift, options=vjax.RollerOptions(n=n),
+            ring = mat.with_shift(shift)
+            r = vjax.roller_bearing(ring, ring, RI + c["D"] + Pd / 2, RI, c["D"], Z, c["load"], diametral_clearance=Pd,
+                                    omega_shaft=w, temperature=t, options=vjax.RollerOptions(n=n),
                                     throw=False)
             peak = jnp.maximum(_peak(r.pressure), _peak(r.pressure_shaft))
             return jnp.stack([r.torque, peak, jnp.max(r.roller_loads[0])]), r.converged

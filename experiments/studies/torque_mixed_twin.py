@@ -118,8 +118,8 @@ def main(out_dir, quick=False):
     opt = vjax.FiniteJournalOptions(n=N, m=M)
     share = []
     for a, b, c in zip(rpm, T, load):
-        r = vjax.journal_bearing(0.025, 5e-5, eta(b), c * L, length=L, housing=vjax.liner(true_mat, 3e-3),
-                                 temperature=b, shift=shift, omega_housing=a * np.pi / 30, options=opt,
+        r = vjax.journal_bearing(0.025, 5e-5, eta(b), c * L, length=L, housing=vjax.liner(true_mat.with_shift(shift), 3e-3),
+                                 temperature=b, omega_housing=a * np.pi / 30, options=opt,
                                  throw=False, roughness=roughness(), supply_angle=None)
         share.append(float(r.asperity_share))
     share = np.asarray(share)

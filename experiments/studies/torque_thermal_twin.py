@@ -53,8 +53,8 @@ def modulus_error(mat, true_mat, shift, true_shift):
     w = jnp.logspace(0, 4, 17)
     errs = []
     for T in (40.0, 70.0, 100.0):
-        a = jnp.abs(mat.at_temperature(shift, T).modulus(w))
-        b = jnp.abs(true_mat.at_temperature(true_shift, T).modulus(w))
+        a = jnp.abs(mat.with_shift(shift).at_temperature(T).modulus(w))
+        b = jnp.abs(true_mat.with_shift(true_shift).at_temperature(T).modulus(w))
         errs.append(np.asarray(jnp.log(a / b)))
     return float(np.sqrt(np.mean(np.concatenate(errs) ** 2)))
 
@@ -73,8 +73,8 @@ def _pin(true_mat, true_shift, quick):
     tq_iso, _ = ft.evaluate(iso, true_mat, true_shift, *(jnp.asarray(v) for v in zip(*grid)))
     P_iso = np.asarray(tq_iso) * rpm * np.pi / 30 * (R - C) / C     # Omega torque, Omega the patch speed
     hA = float(f"{P_iso.max() / HEAT_RISE:.2g}")
-    T_eff = [float(vjax.thermal_pin(true_mat, R, C, c, vjax.HeatTransfer(T_supply=b, hA=hA, oil_flow=False),
-                                    shift=true_shift, omega_shaft=a * np.pi / 30,
+    T_eff = [float(vjax.thermal_pin(true_mat.with_shift(true_shift), R, C, c,
+                                    vjax.HeatTransfer(T_supply=b, hA=hA, oil_flow=False), omega_shaft=a * np.pi / 30,
                                     options=vjax.PinOptions(n=n)).temperature) for a, b, c in grid]
     return iso, ft.pin_model(n=n, heat_transfer=hA), grid, hA, np.asarray(T_eff), "W/(m K)"
 
@@ -93,7 +93,7 @@ def _journal(true_mat, true_shift, quick):
     opt = vjax.FiniteJournalOptions(n=16, m=4)
     T_eff = [float(vjax.thermal_journal_bearing(
         0.025, 5e-5, oil.lubricant, c * JOURNAL_L, vjax.HeatTransfer(T_supply=b, hA=JOURNAL_HA), length=JOURNAL_L,
-        housing=vjax.liner(true_mat, 3e-3), shift=true_shift, omega_housing=a * np.pi / 30, options=opt).temperature)
+        housing=vjax.liner(true_mat.with_shift(true_shift), 3e-3), omega_housing=a * np.pi / 30, options=opt).temperature)
         for a, b, c in grid]
     return (ft.journal_model(**kw), ft.journal_model(heat_transfer=JOURNAL_HA, **kw), grid, JOURNAL_HA,
             np.asarray(T_eff), "W/K")

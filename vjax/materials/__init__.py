@@ -2,6 +2,6 @@
 creep spectrum) and their time-temperature shift laws (WLF, Arrhenius) (:mod:`.viscoelastic`);
 lubricants: viscosity by temperature, density, heat capacity, conductivity (:mod:`.lubricant`)."""
 from .lubricant import Lubricant, as_lubricant
-from .viscoelastic import Arrhenius, CreepSpectrum, Material, WLF
+from .viscoelastic import GAS_CONSTANT, KELVIN, Arrhenius, CreepSpectrum, Material, WLF
 
-__all__ = ["Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lubricant"]
+__all__ = ["GAS_CONSTANT", "KELVIN", "Arrhenius", "CreepSpectrum", "Lubricant", "Material", "WLF", "as_lubricant"]
