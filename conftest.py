@@ -81,7 +81,7 @@ if os.environ["VJAX_TEST_XLA_CACHE"]:
     jax.config.update("jax_compilation_cache_dir", os.environ["VJAX_TEST_XLA_CACHE"])
     jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.2)   # not the many tiny eager ops
 # command-line tools called in-process must not write the user's compilation cache
-# (fitting.jax_cache); tests of the cache run the tools in subprocesses without this
+# (fitting.shared.jax_cache); tests of the cache run the tools in subprocesses without this
 os.environ.setdefault("VJAX_NO_CACHE", "1")
 
 

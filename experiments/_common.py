@@ -28,7 +28,7 @@ import statistics
 import time
 from pathlib import Path
 
-from fitting import files
+from fitting.shared import files
 
 __all__ = ["Check", "StageReport", "enable_x64", "setup", "atomic_write_text", "save_figure",
            "write_csv", "time_fn", "format_table", "print_table", "run_at_commit"]
@@ -225,7 +225,7 @@ def run_at_commit(ref: str, code: str, timeout: float = 3600.0) -> str:
 
 
 def atomic_write_text(path, text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`fitting.files.write_atomic`),
+    """Write ``text`` (UTF-8) to ``path`` atomically (:func:`fitting.shared.files.write_atomic`),
     creating its folder."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

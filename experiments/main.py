@@ -94,7 +94,8 @@ DEPENDS = {"bodies": ("calibration",)}    # bodies reads the calibrated material
 
 def calibration_stage(out_dir, quick=False):
     """Fit the shipped pyvisco example (tensile, 21 temperatures) at T_ref = 25 C."""
-    from fitting import calibrate, dma
+    from fitting import calibrate
+    from fitting.measurements import dma
     material, shift, report = calibrate(dma.default_data("pyvisco"), 25.0, out_dir, stem="material",
                                         max_iter=60 if quick else 300)
     text = (f"material written to {Path(out_dir) / 'material.json'}\n"
@@ -203,7 +204,7 @@ def _run_stage(name, out, quick, cache, prefix=True):
     gc.set_threshold(50_000)
     _common.enable_x64()
     if cache:
-        from fitting import jax_cache
+        from fitting.shared import jax_cache
         jax_cache.enable()
     module, func = next(((m, f) for s, m, f in STAGES if s == name), (None, None))
     if module is None:

@@ -36,7 +36,8 @@ NB1 = [
            "(tensile, 21 temperatures from -50 to 100 C, BSD-3)."),
     ("code", SETUP),
     ("code", '''import fitting
-from fitting import dma, master, prony
+from fitting.measurements import dma
+from fitting.calibration import master, prony
 path = dma.default_data("pyvisco")
 table = dma.read(path)
 print(table.summary())'''),

@@ -18,8 +18,11 @@ import pytest
 import vjax
 from vjax import Arrhenius, ContactOptions, Material, WLF
 from experiments import _common
-from fitting import calibrate, dma, io, master
-from fitting.cli import main as cli
+from fitting import calibrate
+from fitting.measurements import dma
+from fitting.calibration import io
+from fitting.calibration import master
+from fitting.cli.fit import main as cli
 
 NAN, INF = float("nan"), float("inf")
 M = Material.sls(1e6, 1e7, 0.01, 0.5)

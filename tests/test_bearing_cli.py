@@ -1,4 +1,4 @@
-"""vjax-bearing (fitting.bearing_cli): refusals of bad input, the coefficients file read back by
+"""vjax-bearing (fitting.cli.bearing): refusals of bad input, the coefficients file read back by
 an independent reader of its documented layout (docs/bearing_files.md) against vjax called
 directly, a failed point reported while the others go on, and one shipped example end to end."""
 import csv
@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fitting import bearing_cli
-from fitting.case_units import parse
+from fitting.cli import bearing as bearing_cli
+from fitting.bearing.case_units import parse
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -252,7 +252,7 @@ def test_viscoelastic_share_against_the_dissipations(tmp_path, capsys):
 def test_default_grids_are_the_librarys():
     # one default, stated once: a case file without [grid] solves on the scene's own default
     import vjax
-    from fitting import case
+    from fitting.bearing import case
     assert case._DEFAULT_N == {"finite_journal": vjax.FiniteJournalOptions().n, "long_journal": vjax.JournalOptions().n,
                                "roller": vjax.RollerOptions().n, "pin": vjax.PinOptions().n}
     assert case._DEFAULT_M == vjax.FiniteJournalOptions().m

@@ -1,6 +1,6 @@
-"""FEM exports (fitting.export, vjax-export, vjax-fit --export): every file is read back by an
+"""FEM exports (fitting.fem.export, vjax-export, vjax-fit --export): every file is read back by an
 independent parser written here from each code's documented formulas (not from
-fitting/export.py), and the rebuilt shear relaxation modulus, bulk modulus, density and shift
+fitting/fem/export.py), and the rebuilt shear relaxation modulus, bulk modulus, density and shift
 function are compared with the fitted material (vjax.Material.relaxation and vjax's shift
 laws) to 1e-10. The documented formulas (docs/fem_export.md cites the manuals):
 
@@ -23,9 +23,11 @@ from importlib.metadata import version
 import numpy as np
 import pytest
 
-from fitting import dma, export, export_cli
-from fitting import cli as fit_cli
-from fitting.dma import default_data
+from fitting.measurements import dma
+from fitting.fem import export
+from fitting.cli import export as export_cli
+from fitting.cli import fit as fit_cli
+from fitting.measurements.dma import default_data
 from vjax.material import Arrhenius, Material, WLF
 
 R = 8.314462618
@@ -324,7 +326,7 @@ def test_abaqus_material_name_starts_with_a_letter(tmp_path):
 def test_file_set_is_atomic(tmp_path, monkeypatch):
     """An I/O error on the second file of an export leaves no file at all (no first card, no
     temporary)."""
-    from fitting import files
+    from fitting.shared import files
     path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
     real, calls = files.write_temporary, []
 
@@ -349,7 +351,7 @@ def test_bulk_modulus_and_shear_material(tmp_path):
 
 
 def test_evaluate_card_round_trip(tmp_path):
-    """fitting.export.evaluate_card gives back what the independent readers read, and follows
+    """fitting.fem.export.evaluate_card gives back what the independent readers read, and follows
     an edited card."""
     path = _write(tmp_path, WLF_MAT)
     assert export_cli.main([path, "--format", "all", "--nu", "0.4", "--temperature", "C", "--density", "1000",
@@ -815,7 +817,7 @@ def test_fit_cli_checks_export_options_first(tmp_path, capsys):
 def test_a_liquid_json_exports_and_vjax_refuses_it_clearly(tmp_path):
     """A material JSON with E0 = 0: every card carries G_inf = 0 and says E_inf = 0; loading it
     as a vjax material (what a bearing does) is refused with a message that says why."""
-    from fitting import io
+    from fitting.calibration import io
     d = dict(WLF_MAT, E0=0.0)
     path = _write(tmp_path, d)
     assert export_cli.main([path, "--format", "all", "--nu", "0.42", "--full-spectrum", "--temperature", "K",

@@ -1,4 +1,4 @@
-"""The calibration figures of fitting.plots (what vjax-fit and the main job's calibration stage
+"""The calibration figures of fitting.calibration.plots (what vjax-fit and the main job's calibration stage
 draw) pass the layout checker of experiments/figures/layout.py, as saved: on exact model data
 (fast) and on the calibration of the shipped pyvisco DMA data (slow)."""
 import types
@@ -7,7 +7,11 @@ import numpy as np
 import pytest
 
 from experiments.figures import layout
-from fitting import dma, figures, files, master, plots, relaxation
+from fitting.measurements import dma
+from fitting.calibration import figures
+from fitting.shared import files
+from fitting.calibration import master, plots
+from fitting.measurements import relaxation
 from vjax.material import WLF, Material
 
 MAT = Material.prony(2e6, np.array([8e8, 2e8, 5e7, 1e7]), np.array([1e-6, 1e-4, 1e-2, 1.0]), 0.5)
@@ -17,7 +21,7 @@ TEMPS = np.arange(-10.0, 71.0, 10.0)
 
 @pytest.fixture
 def checked(monkeypatch):
-    """fitting.files.save_figure through the layout checker: {path: problems} of every figure saved."""
+    """fitting.shared.files.save_figure through the layout checker: {path: problems} of every figure saved."""
     found = {}
 
     def save(fig, path, dpi=150, **savefig_kw):

@@ -1,12 +1,12 @@
-"""fitting.compact: the fewest-term series. Synthetic spectra whose answer is known: a series
+"""fitting.calibration.compact: the fewest-term series. Synthetic spectra whose answer is known: a series
 of few terms is found again, the count stops where the accuracy on noisy points of a smooth
 spectrum is held, and relaxation times stay inside the window. Expected values come from the
 synthetic spectra, not from the code."""
 import numpy as np
 import pytest
 
-from fitting import compact
-from fitting.evaluate import errors_at, loss_extrema
+from fitting.calibration import compact
+from fitting.shared.evaluate import errors_at, loss_extrema
 
 
 TRUE = compact.Series(1e6, np.array([4e8, 1e8, 3e7, 5e6]), np.array([1e-5, 1e-3, 1e-1, 10.0]))

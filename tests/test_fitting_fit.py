@@ -6,7 +6,12 @@ import numpy as np
 import pytest
 
 from vjax import Arrhenius, Material, WLF
-from fitting import optim, calibrate, cli, dma, io, master, prony, spectrum
+from fitting import calibrate
+from fitting.shared import optim
+from fitting.cli import fit as cli
+from fitting.measurements import dma
+from fitting.calibration import io
+from fitting.calibration import master, prony, spectrum
 
 TRUE_WLF = WLF(10.0, 120.0, 30.0)
 

@@ -1,11 +1,12 @@
-"""Calibration plots (fitting.plots): each writes a PNG, draws what it claims (checked on
+"""Calibration plots (fitting.calibration.plots): each writes a PNG, draws what it claims (checked on
 synthetic data lying exactly on the model) and refuses bad input with a clear message."""
 import types
 
 import numpy as np
 import pytest
 
-from fitting import dma, figures, master, plots
+from fitting.measurements import dma
+from fitting.calibration import figures, master, plots
 from vjax.material import Material, WLF
 
 MAT = Material.prony(2e6, np.array([8e8, 2e8, 5e7, 1e7]), np.array([1e-6, 1e-4, 1e-2, 1.0]), 0.5)

@@ -1,10 +1,11 @@
-"""Readers of fitting.dma on every shipped format and on broken files."""
+"""Readers of fitting.measurements.dma on every shipped format and on broken files."""
 import os
 
 import numpy as np
 import pytest
 
-from fitting import dma, master
+from fitting.measurements import dma
+from fitting.calibration import master
 
 # a TA Instruments TRIOS export whose redistribution is not cleared: not shipped; point
 # VJAX_TRIOS_SAMPLE at a copy (e.g. rheojax's examples/data/temperature_sweep/polymers/
@@ -127,7 +128,7 @@ def test_pyvisco_header_with_shear_and_latin1(tmp_path):
     assert t.kind == "G" and t.n_sets == 2 and t.storage[0] == 1e9
 
 
-# ---- Netzsch Eplexor .xls exports (fitting.eplexor) ------------------------------------------
+# ---- Netzsch Eplexor .xls exports (fitting.measurements.eplexor) ------------------------------------------
 PV = os.path.dirname(dma.default_data("pyvisco"))
 
 
@@ -152,7 +153,7 @@ def test_eplexor_master_xls_rebuilds_the_sweeps(name, kind, T_ref, C1, C2, n_set
     decade, from the file's Data header), at a shift-list temperature; shifting them back with
     the shift list gives the file's reduced frequencies."""
     import xlrd
-    from fitting import eplexor
+    from fitting.measurements import eplexor
     path = os.path.join(PV, name)
     t = dma.read(path)
     assert t.kind == kind and t.n_sets == n_sets

@@ -1,5 +1,5 @@
-"""Smooth spectra (fitting.spectrum), closed-form shift-law alternatives, the term cap,
-relaxation data (fitting.relaxation) and vjax-fit output feeding vjax-fit-torque."""
+"""Smooth spectra (fitting.calibration.spectrum), closed-form shift-law alternatives, the term cap,
+relaxation data (fitting.measurements.relaxation) and vjax-fit output feeding vjax-fit-torque."""
 import json
 import os
 
@@ -10,9 +10,15 @@ import jax
 import jax.numpy as jnp
 
 from vjax import Arrhenius, Material, WLF
-from fitting import calibrate, dma, evaluate, io, master, prony, relaxation, spectrum
+from fitting import calibrate
+from fitting.measurements import dma
+from fitting.shared import evaluate
+from fitting.calibration import io
+from fitting.calibration import master, prony
+from fitting.measurements import relaxation
+from fitting.calibration import spectrum
 from fitting import torque as ft
-from fitting.torque_cli import main as torque_main
+from fitting.cli.torque import main as torque_main
 
 PYVISCO = dma.default_data("pyvisco")
 TIME_RAW = os.path.join(os.path.dirname(PYVISCO), "time_user_raw.csv")
@@ -62,7 +68,7 @@ def test_shift_law_values_and_written_out_jacobian(kind, T_ref):
     elif kind == "Arrhenius":
         want = Arrhenius(np.exp(2.5), T_ref).log10_aT(Ts)
     else:
-        q = np.asarray(p[:4])      # the table's interpolant in numpy (fitting.evaluate), not the JAX one
+        q = np.asarray(p[:4])      # the table's interpolant in numpy (fitting.shared.evaluate), not the JAX one
         want = q - evaluate.log10_aT(master.ShiftTable(np.asarray(Ts), q, T_ref), T_ref)
     for k in (code, jnp.asarray(code)):
         L, J = prony.law_eval(k, p, Ts, T_ref, c2min)
@@ -215,7 +221,7 @@ def test_file_that_is_neither_frequency_nor_relaxation_data(tmp_path):
 
 
 def test_cli_term_cap_and_method_arguments(tmp_path, capsys):
-    from fitting.cli import main as fit_main
+    from fitting.cli.fit import main as fit_main
     out = str(tmp_path / "m.json")
     assert fit_main([PYVISCO, "--tref", "25", "--out", out, "--max-terms", "2"]) == 2
     assert "--max-terms must be an integer >= 3, got 2" in capsys.readouterr().err

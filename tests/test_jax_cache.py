@@ -1,4 +1,4 @@
-"""The command-line tools' persistent compilation cache (fitting.jax_cache): where it lives,
+"""The command-line tools' persistent compilation cache (fitting.shared.jax_cache): where it lives,
 that a small compilation is stored (the default 1 s threshold would skip it), and that
 VJAX_NO_CACHE / --no-cache turn it off. Run in subprocesses: the cache is per process."""
 import os
@@ -7,11 +7,11 @@ import sys
 
 import pytest
 
-from fitting import jax_cache
+from fitting.shared import jax_cache
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SNIPPET = ("import sys, jax, jax.numpy as jnp\n"
-           "from fitting import jax_cache\n"
+           "from fitting.shared import jax_cache\n"
            "print(jax_cache.enable('--no-cache' in sys.argv))\n"
            "jax.jit(lambda x: jnp.sin(x) * 3.0 + 1.0)(jnp.arange(7.0)).block_until_ready()\n")
 
@@ -46,7 +46,7 @@ def test_small_compilations_are_stored_and_switches_turn_it_off(tmp_path):
 EXPORT_SNIPPET = ("import sys, jax, jax.numpy as jnp, numpy as np\n"
                   "jax.config.update('jax_enable_x64', True)\n"
                   "import functools\n"
-                  "from fitting import jax_cache\n"
+                  "from fitting.shared import jax_cache\n"
                   "traced = []\n"
                   "@functools.partial(jax.jit, static_argnames='n')\n"
                   "def f(x, pair, *, n):\n"

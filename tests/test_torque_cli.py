@@ -5,9 +5,9 @@ import jax
 import numpy as np
 import pytest
 
-from fitting import io
+from fitting.calibration import io
 from fitting import torque as ft
-from fitting.torque_cli import main
+from fitting.cli.torque import main
 from vjax import Arrhenius, Material, WLF
 
 TRUE = Material.prony(1e6, [3e6, 4e6, 2e6], [1e-4, 1e-3, 1e-2], 0.5)
@@ -88,7 +88,7 @@ def test_shear_start_material_is_converted_to_tensile(files, tmp_path, capsys):
 def test_command_line_tools_print_no_float32_warning():
     import subprocess
     import sys
-    for module in ("fitting.cli", "fitting.torque_cli"):
+    for module in ("fitting.cli.fit", "fitting.cli.torque"):
         r = subprocess.run([sys.executable, "-m", module, "--help"], capture_output=True, text=True, timeout=120,
                            env={**__import__("os").environ, "JAX_ENABLE_X64": "0"})
         assert r.returncode == 0 and "usage" in r.stdout, r.stderr

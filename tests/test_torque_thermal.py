@@ -5,9 +5,9 @@ import jax.numpy as jnp
 import numpy as np
 import pytest
 
-from fitting import io
+from fitting.calibration import io
 from fitting import torque as ft
-from fitting.torque_cli import main
+from fitting.cli.torque import main
 from vjax import WLF, Material
 
 TRUE = Material.prony(1e6, [3e6, 4e6], [1e-4, 1e-2], 0.5)

@@ -60,7 +60,7 @@ SETUP = {
                                "options=vjax.FiniteJournalOptions(n=256, m=64)).torque"),
     "journal_coefficients": ("", "vjax.journal_coefficients(0.05, 5e-5, 0.01, 2e4, [0.0, 50.0, 100.0, 200.0], "
                                  "omega_shaft=100.0, options=vjax.JournalOptions(n=128)).stiffness"),
-    "fit": ("from fitting import calibrate, dma\ndata = dma.default_data('pyvisco')",
+    "fit": ("from fitting import calibrate\nfrom fitting.measurements import dma\ndata = dma.default_data('pyvisco')",
             "calibrate(data, 25.0)[0].Einf"),
 }
 CASES = tuple(SETUP)

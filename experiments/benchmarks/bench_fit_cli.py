@@ -1,6 +1,6 @@
 """Wall time of the ``vjax-fit`` command line with JAX's persistent compilation cache.
 
-In one run, as separate processes (``python -m fitting.cli``, what the console script runs),
+In one run, as separate processes (``python -m fitting.cli.fit``, what the console script runs),
 on the shipped pyvisco example (freq_user_raw.csv, 210 points, T_ref = 25 C, default options,
 plots written):
 
@@ -55,7 +55,7 @@ def _env(cache_home, root=ROOT):
 
 def main(out_dir="experiments/out", quick=False, baseline=None):
     """Run the measurements; returns the rows written."""
-    from fitting import dma
+    from fitting.measurements import dma
     os.makedirs(out_dir, exist_ok=True)
     print(f"device: {_common.device_note()}", flush=True)
     repeats = 1 if quick else 3
@@ -63,7 +63,7 @@ def main(out_dir="experiments/out", quick=False, baseline=None):
     rows = []
     with tempfile.TemporaryDirectory() as work, \
             (_common.worktree_at(baseline) if baseline else contextlib.nullcontext()) as tree:
-        fit = ["-m", "fitting.cli", data, "--tref", "25", "--out", os.path.join(work, "m.json")]
+        fit = ["-m", "fitting.cli.fit", data, "--tref", "25", "--out", os.path.join(work, "m.json")]
         imp = [_run(["-c", "import vjax, fitting"], _env(work)) for _ in range(repeats)]
         first, second, second_np, nocache, second_base = [], [], [], [], []
         if tree:

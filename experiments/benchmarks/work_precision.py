@@ -270,7 +270,8 @@ def journal_rows(quick):
 
 # ---------------------------------------------------------------------- DMA fit
 def fit_rows(quick):
-    from fitting import calibrate, dma
+    from fitting import calibrate
+    from fitting.measurements import dma
     rows = []
     path = dma.default_data("pyvisco")
     ladder = [(0.5, 30)] if quick else [(0.5, 300), (0.75, 300), (1.0, 300), (1.5, 300), (2.0, 300), (1.0, 10),

@@ -45,7 +45,8 @@ JR, JC, WATER, JLOAD, LINER = 0.05, 1.5e-4, 1e-3, 3e4, 5e-3
 
 def _material(out):
     """The main job's calibrated polymer, or a fresh calibration of the shipped DMA data."""
-    from fitting import calibrate, dma, load_material
+    from fitting import calibrate, load_material
+    from fitting.measurements import dma
     path = Path(out).parent / "calibration" / "material.json"
     if path.exists():
         material, shift, _ = load_material(path)

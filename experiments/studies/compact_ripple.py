@@ -3,8 +3,8 @@
 For each shipped data set (the WLF fits of :mod:`experiments.studies.fem_export`): the decades of the
 data's reduced window over which the full smooth fit's log-log loss slope is below 0.07 (where
 a Maxwell sum 1 decade apart, ripple slope 0.15, adds extrema), then for n = 20 .. 60 the
-series :func:`fitting.compact.placed_terms` (times placed by the ripple rule, moduli by NNLS on
-the full fit) and, at 20, :func:`fitting.compact.fit_terms` to the DMA points (free times):
+series :func:`fitting.calibration.compact.placed_terms` (times placed by the ripple rule, moduli by NNLS on
+the full fit) and, at 20, :func:`fitting.calibration.compact.fit_terms` to the DMA points (free times):
 loss-modulus extrema over the window and storage / loss medians on the DMA points against the
 full fit's. Printed: the fewest n with at most max(3, the full fit's) extrema and both medians
 within 1.5x.
@@ -20,7 +20,9 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
-from fitting import compact, evaluate, export  # noqa: E402
+from fitting.calibration import compact  # noqa: E402
+from fitting.shared import evaluate
+from fitting.fem import export
 
 
 def main(out_dir="experiments/out"):

@@ -36,7 +36,9 @@ jax.config.update("jax_enable_x64", True)
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
-from fitting import calibrate, dma, figures  # noqa: E402
+from fitting import calibrate  # noqa: E402
+from fitting.measurements import dma
+from fitting.calibration import figures
 
 DATASETS = [("pyvisco_freq_user_raw", lambda: dma.default_data("pyvisco"), 25.0, {}),
             ("dmasuite_E_0to105C", lambda: dma.default_data("dmasuite"), 70.0, {})]
@@ -93,7 +95,7 @@ def run_pyvisco(table, T_ref, work):
     st = E_inst * (1 - a.sum()) + (E_inst * a * A ** 2 / (1 + A ** 2)).sum(1)
     lo = (E_inst * a * A / (1 + A ** 2)).sum(1)
     res = _score(st, lo, df_raw[f"{m}_stor"].values, df_raw[f"{m}_loss"].values)
-    from fitting.spectrum import count_extrema
+    from fitting.calibration.spectrum import count_extrema
     ww = np.logspace(np.log10(w.min()), np.log10(w.max()), 4096)[:, None] * tau
     res["loss_extrema"] = count_extrema((E_inst * a * ww / (1 + ww ** 2)).sum(1))
     res.update(tool="pyvisco", terms=int(N), wall_time=wall, T_ref=RefT, law="table (pyvisco aT)",

@@ -1,9 +1,9 @@
 """The FEM cards' term counts per data set (docs/fem_export.md, "Default cards on the data").
 
 For each shipped data set (and the polystyrene melt of tests/data), fitted with WLF (nu 0.45):
-the default compact series (:func:`fitting.export.prepare`): its count, the data's scatter about
+the default compact series (:func:`fitting.fem.export.prepare`): its count, the data's scatter about
 the full fit (median |log10(E''_fit/E''_measured)|), its loss-modulus ripple
-(:func:`fitting.compact.ripple_of`) and its accuracy against the full fit's; whether LS-DYNA's six
+(:func:`fitting.calibration.compact.ripple_of`) and its accuracy against the full fit's; whether LS-DYNA's six
 cards hold the data's window, else the widest window they do hold (the refusal's message); and
 ``--window`` set to that window: the compact count and accuracy there, and LS-DYNA's deviation.
 
@@ -19,9 +19,10 @@ import jax
 
 jax.config.update("jax_enable_x64", True)
 
-from fitting import dma, export  # noqa: E402
-from fitting.calibration import calibrate  # noqa: E402
-from fitting.export import CARD_LIMIT  # noqa: E402
+from fitting.measurements import dma  # noqa: E402
+from fitting.fem import export
+from fitting.calibration.pipeline import calibrate  # noqa: E402
+from fitting.fem.export import CARD_LIMIT  # noqa: E402
 
 HERE = os.path.dirname(dma.default_data("pyvisco"))
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

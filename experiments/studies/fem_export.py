@@ -4,7 +4,7 @@ For each data set (pyvisco's Eplexor .xls raw export and user CSV at T_ref = 25 
 relaxation example, DMA-analysis-suite T0..T105 at 70 C): vjax-fit's calibration (WLF,
 nu = 0.45), then what ``vjax-export`` writes by default:
 
-* the compact series for Abaqus, ANSYS and COMSOL (:func:`fitting.export.prepare`), the
+* the compact series for Abaqus, ANSYS and COMSOL (:func:`fitting.fem.export.prepare`), the
   default (smooth) and capped at 20 terms (``--max-terms 20``): terms, median
   |log10(model/measured)| of storage and loss on the raw points against the full smooth
   fit's, loss-modulus extrema over the data's reduced range;
@@ -13,7 +13,7 @@ nu = 0.45), then what ``vjax-export`` writes by default:
 Then, where ``import pyvisco`` works (``pip install pyvisco``; it is in the ``experiments``
 extra), pyvisco's default pipeline on the same frequency data in the same run (its own
 master curve and term count N, :func:`experiments.studies.dma_fit.run_pyvisco`), and vjax at N terms:
-the compact refit (:func:`fitting.compact.fit_terms` to the DMA points) of the table-law fit
+the compact refit (:func:`fitting.calibration.compact.fit_terms` to the DMA points) of the table-law fit
 (one shift factor per temperature, as pyvisco's) and of the WLF fit, and ``vjax-fit
 --max-terms N`` (WLF, end to end). Each scored with its own shift factors on the raw points. Writes ``<out_dir>/fem_export.md``.
 
@@ -32,8 +32,12 @@ jax.config.update("jax_enable_x64", True)
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))   # the repository root
-from fitting import calibrate, compact, dma, evaluate, export  # noqa: E402
-from fitting.export import CARD_LIMIT  # noqa: E402
+from fitting import calibrate  # noqa: E402
+from fitting.calibration import compact
+from fitting.measurements import dma
+from fitting.shared import evaluate
+from fitting.fem import export
+from fitting.fem.export import CARD_LIMIT  # noqa: E402
 
 HERE = os.path.dirname(dma.default_data("pyvisco"))
 DATASETS = [("pyvisco Eplexor raw (.xls)", [os.path.join(HERE, "freq_Eplexor_raw.xls")], 25.0),

@@ -91,7 +91,7 @@ def main(out_dir, quick=False):
     out = _common.setup(out_dir)
     import jax
     import jax.numpy as jnp
-    from fitting import plots
+    from fitting.calibration import plots
     from fitting import torque as ft
     from vjax import Material
     from experiments.studies.torque_twin import JOURNAL_NU, perturbation, rig_data, twin_material

@@ -104,7 +104,7 @@ def main(out_dir, quick=False, scene="pin"):
     out = _common.setup(out_dir)
     import jax
     import jax.numpy as jnp
-    from fitting import plots
+    from fitting.calibration import plots
     from fitting import torque as ft
     from vjax import Material
     from experiments.studies.torque_mixed_twin import identifiability_lines, markdown_table

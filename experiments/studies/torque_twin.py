@@ -51,7 +51,8 @@ def twin_material(quick: bool = False, data: str = "pyvisco", density: float = 0
     """The true material: Prony + WLF fitted to a shipped DMA data set (``data``: "pyvisco"
     or "dmasuite") at 10-100 C with ``density`` terms per decade (pyvisco, 0.5: 10 terms).
     Returns (Material, WLF, DMATable used)."""
-    from fitting import dma, master, prony
+    from fitting.measurements import dma
+    from fitting.calibration import master, prony
     from vjax import Material
 
     tab = dma.read(dma.default_data(data))
@@ -110,8 +111,8 @@ def main(out_dir="experiments/out", quick: bool = False, scene: str = "roller", 
     out = _common.setup(out_dir)
     import jax
     import matplotlib.pyplot as plt
-    from fitting import io as fio
-    from fitting import plots
+    from fitting.calibration import io as fio
+    from fitting.calibration import plots
     from fitting import torque as ft
 
     t_all = time.perf_counter()

@@ -28,8 +28,8 @@ import numpy as np
 
 from vjax import Arrhenius, Material, WLF
 
-from .files import write_atomic as atomic_write
-from .master import ShiftTable
+from fitting.shared.files import write_atomic as atomic_write
+from fitting.calibration.master import ShiftTable
 
 __all__ = ["save_material", "load_material", "material_to_dict", "material_from_dict", "closed_form_shift"]
 

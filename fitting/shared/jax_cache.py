@@ -10,7 +10,7 @@ many sub-second compilations). Turn it off with ``VJAX_NO_CACHE=1`` or the tools
 affected: only the tools call :func:`enable`.
 
 XLA's cache still leaves JAX's own work to every process: tracing the Python function and
-lowering it to StableHLO, for the fit's one large solve (:func:`fitting.spectrum.smooth_fit`)
+lowering it to StableHLO, for the fit's one large solve (:func:`fitting.calibration.spectrum.smooth_fit`)
 about 0.5 s of a cached ``vjax-fit`` call, five times the lookup of its compiled code.
 :func:`call` keeps that program too: the first call exports it
 (:mod:`jax.export`) to ``<cache>/exported/``, later processes load it, skip tracing and
@@ -53,7 +53,7 @@ def _sources_hash() -> str:
     """sha256 of the vjax and fitting sources (paths and contents, every folder)."""
     import vjax
     h = hashlib.sha256()
-    for package in (os.path.dirname(vjax.__file__), os.path.dirname(__file__)):
+    for package in (os.path.dirname(vjax.__file__), os.path.dirname(os.path.dirname(__file__))):   # vjax/, fitting/
         for folder, dirs, files in os.walk(package):
             dirs.sort()
             for name in sorted(files):
@@ -77,7 +77,7 @@ def call(fun, args: tuple, **static):
         return fun(*args, **static)
     import jax
 
-    from .files import write_atomic
+    from fitting.shared.files import write_atomic
     leaves, tree = jax.tree.flatten(args)
     # the types keep Python scalars weak-typed ('~float64[]'), as a plain call traces them
     key = repr((getattr(fun, "__module__", ""), getattr(fun, "__qualname__", repr(fun)), sorted(static.items()),

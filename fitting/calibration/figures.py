@@ -1,13 +1,13 @@
 """The figures of a calibration, drawn in this process or in parallel worker processes.
 
 :func:`save_all` writes the six PNGs of a frequency-domain calibration (three for relaxation
-data) with the functions of :mod:`fitting.plots`. Importing this module imports neither
+data) with the functions of :mod:`fitting.calibration.plots`. Importing this module imports neither
 matplotlib nor JAX.
 
 Drawing is matplotlib's Python: about 0.2 s per figure, plus 0.6 s to import matplotlib, on
 a two-core machine; together most of a ``vjax-fit`` call once its compiled functions are
 cached. :func:`start_workers`, called first thing by the command line, starts a fork server
-that imports matplotlib (and JAX, vjax, :mod:`fitting.plots`) on another core while the calling
+that imports matplotlib (and JAX, vjax, :mod:`fitting.calibration.plots`) on another core while the calling
 process imports JAX and fits; :func:`save_all` then forks one worker per core from it and the
 figures are drawn side by side. Without workers (not started, one core, or a platform without
 ``fork``) the figures are drawn in this process, with the same files as result.
@@ -38,7 +38,7 @@ def start_workers() -> bool:
     if _context is None and _cores() > 1 and "forkserver" in multiprocessing.get_all_start_methods():
         from multiprocessing import forkserver
         context = multiprocessing.get_context("forkserver")
-        context.set_forkserver_preload(["fitting.figure_server"])
+        context.set_forkserver_preload(["fitting.calibration.figure_server"])
         try:
             forkserver.ensure_running()
         except OSError:     # no server (e.g. no free file descriptors): draw in this process
@@ -48,7 +48,7 @@ def start_workers() -> bool:
 
 
 def _draw(name, args):
-    from . import plots
+    from fitting.calibration import plots
     return getattr(plots, name)(*args)
 
 
@@ -63,9 +63,9 @@ def save_all(out_dir, stem, table, material, shift, data_shift, laws=None) -> li
     """Write the plots as ``<stem>_master.png``, ``_shift.png``, ``_residuals.png``,
     ``_spectrum.png``, ``_tsweep.png`` (E', E'', tan delta versus T at 1 and 10 Hz) and
     ``_vgp.png`` (van Gurp-Palmen) in ``out_dir``; returns their paths in this order.
-    Relaxation data get ``_master.png`` (:func:`fitting.plots.relaxation_curve`),
+    Relaxation data get ``_master.png`` (:func:`fitting.calibration.plots.relaxation_curve`),
     ``_shift.png`` and ``_spectrum.png``. ``laws``: the closed-form laws for the shift plot
-    (see :func:`fitting.plots.shift_factors`). Errors of a plot (bad input) are raised here,
+    (see :func:`fitting.calibration.plots.shift_factors`). Errors of a plot (bad input) are raised here,
     also from a worker."""
     path = lambda name: os.path.join(out_dir, f"{stem}_{name}.png")
     if getattr(table, "domain", "frequency") == "time":

@@ -1,6 +1,6 @@
 """The sweep of a bearing case (``vjax-bearing``): one vjax scene solve per operating point.
 
-Points run in the order of :attr:`fitting.case.Case.points` (speed innermost); each solve
+Points run in the order of :attr:`fitting.bearing.case.Case.points` (speed innermost); each solve
 starts from the previous converged point of the same temperature and load (``initial=``), and
 a warm start that fails is retried cold. A point that still fails is kept, with the solver's
 reason (the :class:`vjax.ConvergenceError` message) in its row; the sweep goes on. Only vjax's

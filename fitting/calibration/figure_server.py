@@ -1,4 +1,4 @@
-"""Preloaded by the fork server of :mod:`fitting.figures`: what a drawing worker needs,
+"""Preloaded by the fork server of :mod:`fitting.calibration.figures`: what a drawing worker needs,
 imported once, JAX in float64 and no JAX backend started (so the server may fork)."""
 import atexit
 import os
@@ -8,7 +8,8 @@ import jax
 
 jax.config.update("jax_enable_x64", True)
 
-from . import master, plots  # noqa: E402,F401  (matplotlib; the shift laws and tables the workers unpickle)
+from fitting.calibration import master  # noqa: E402,F401  (matplotlib; the shift laws and tables the workers unpickle)
+from fitting.calibration import plots
 
 # The server ends when its caller does. It has nothing to clean up, and tearing down JAX and
 # matplotlib takes it 0.3 s, during which it still holds the caller's stdout and stderr: a

@@ -32,7 +32,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import jax_cache
+from fitting.shared import jax_cache
 
 
 def _parser():
@@ -51,7 +51,7 @@ def _parser():
 
 
 def _units():
-    from .case_units import UNITS
+    from fitting.bearing.case_units import UNITS
     return "\n".join(f"  {d}: {', '.join(u)}" for d, u in UNITS.items())
 
 
@@ -85,7 +85,7 @@ def main(argv=None) -> int:
         overrides.append((k.strip(), v.strip()))
     import jax
     jax.config.update("jax_enable_x64", True)
-    from .case import CaseError, load_case
+    from fitting.bearing.case import CaseError, load_case
     try:
         case = load_case(args.case, overrides)
         out = Path(args.out)
@@ -101,7 +101,8 @@ def main(argv=None) -> int:
         print(f"vjax-bearing: {args.case}: OK ({case.scene}, {len(case.points)} operating points)")
         return 0
     jax_cache.enable(args.no_cache)
-    from . import bearing_output, bearing_run
+    from fitting.bearing import output as bearing_output
+    from fitting.bearing import run as bearing_run
     import vjax
 
     t0 = time.perf_counter()

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from .case_units import UnitError, parse, parse_load
+from fitting.bearing.case_units import UnitError, parse, parse_load
 
 __all__ = ["CaseError", "Table", "REQUIRED", "sweep", "positive_quantity"]
 

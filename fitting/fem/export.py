@@ -4,7 +4,7 @@ A vjax material is one relaxation modulus, tensile E(t) = E0 + sum_k E_k exp(-t/
 shear G(t) when the JSON says ``"modulus": "G"``), with a shift law log10 a_T(T), a_T > 1
 below T_ref (relaxation times at T are a_T tau_k). FEM codes want an isotropic split:
 
-* shear: G(t) = E(t) / (2 (1 + nu)) (:func:`fitting.evaluate.tensile_over_shear`), same
+* shear: G(t) = E(t) / (2 (1 + nu)) (:func:`fitting.shared.evaluate.tensile_over_shear`), same
   relaxation times; for a shear material the series is taken as it is;
 * bulk: an elastic bulk modulus K, given (``bulk_modulus``) or K = E_g / (3 (1 - 2 nu)) from
   the instantaneous tensile modulus E_g = E0 + sum E_k. It must be finite (nu < 0.5): FEM
@@ -58,7 +58,7 @@ Functions": the WLF field order is confirmed by pyvisco's ANSYS card
 ``tests/data/E1_WLF.USER_MPL``; the base 10 of its logarithm and the two TN constants (Tr, H/R)
 are not confirmed by quoted text.
 
-Term counts: by default the series written is compact (:mod:`fitting.compact`): the fewest
+Term counts: by default the series written is compact (:mod:`fitting.calibration.compact`): the fewest
 terms whose medians on the DMA data stay within 1.5x of the full fit's and whose loss-modulus
 ripple (the largest swing of an extremum the full fit does not have) stays below the data's
 scatter about the full fit (its median |log10(E''_fit/E''_measured)|); ``max_terms`` caps the
@@ -69,7 +69,7 @@ a refit, never a truncation; without ``window`` it is refused when the refit can
 data's window within twice the full fit's error, and the message names the widest window it
 does hold (:func:`widest_window`). Every header states the count, the window, the ripple and
 the accuracy. A liquid (the fit's E0 below 0.1 % of its storage modulus at the data's lowest
-frequency: :func:`fitting.compact.is_liquid`) is written with G_inf = 0, and the header says
+frequency: :func:`fitting.calibration.compact.is_liquid`) is written with G_inf = 0, and the header says
 so. ``isothermal`` writes every card at one temperature (times a_T(T) tau_i, no shift fields).
 Beside each LS-DYNA and ANSYS card (not isothermal) a one-element verification deck is written
 (:func:`verification_plan`): the element at a step shear strain at T_ref and a hotter
@@ -79,7 +79,7 @@ also in the file names); the density (``density``, kg/m^3) is written where each
 it and LS-DYNA's RO is refused without it. Units: ``"SI"`` (Pa, s, kg/m^3, J/mol) or
 ``"mm-N-s-MPa"`` (MPa, s, t/mm^3, mJ/mol). Every header names the source DMA files, the fit's
 accuracy and the vjax version. Files are rendered before the first is written, then written
-as a set (all to temporaries, renamed at the end: :func:`fitting.files.write_all_atomic`): a
+as a set (all to temporaries, renamed at the end: :func:`fitting.shared.files.write_all_atomic`): a
 refusal or an I/O error leaves nothing behind.
 """
 from __future__ import annotations
@@ -92,9 +92,10 @@ import re
 
 import numpy as np
 
-from . import compact, evaluate
-from .evaluate import tensile_over_shear
-from . import files
+from fitting.calibration import compact
+from fitting.shared import evaluate
+from fitting.shared.evaluate import tensile_over_shear
+from fitting.shared import files
 
 __all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
            "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points",
@@ -161,7 +162,7 @@ class FEMMaterial:
 
     @property
     def series(self) -> compact.Series:
-        """The shear series as a :class:`fitting.compact.Series` (Pa, s)."""
+        """The shear series as a :class:`fitting.calibration.compact.Series` (Pa, s)."""
         return compact.Series(float(self.G_inf), np.asarray(self.G, float), np.asarray(self.tau, float))
 
     def with_series(self, s: compact.Series, note: str) -> "FEMMaterial":
@@ -211,7 +212,7 @@ def _positive(name, v, where):
 
 def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material") -> FEMMaterial:
     """The :class:`FEMMaterial` of a material JSON object ``d`` (schema of
-    :mod:`fitting.io`).
+    :mod:`fitting.calibration.io`).
 
     Args:
       nu: Poisson ratio for the split, -1 < nu < 0.5 (default: the material's own nu, which
@@ -306,7 +307,7 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
 
 
 def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
-    """Read a material JSON file (:mod:`fitting.io` schema) and :func:`split` it. DMA file
+    """Read a material JSON file (:mod:`fitting.calibration.io` schema) and :func:`split` it. DMA file
     names recorded relative to the JSON's folder are resolved there."""
     path = os.fspath(path)
     with open(path, encoding="utf-8") as fh:
@@ -329,7 +330,7 @@ def data_points(m: FEMMaterial, window=None):
     omega_max) rad/s reduced: only the points inside it."""
     if not m.files or not all(os.path.exists(f) for f in m.files):
         return None
-    from . import dma, relaxation
+    from fitting.measurements import dma, relaxation
     try:
         if relaxation.is_relaxation(list(m.files)):
             table = relaxation.read(list(m.files))
@@ -388,7 +389,7 @@ def _medians(ref: dict) -> dict:
 
 def widest_window(full: compact.Series, n: int, window, reference: dict, long_term: bool = True, points=None):
     """The widest window of whole decades of reduced time (s at T_ref) inside ``window``
-    (rad/s) over which ``n`` terms (:func:`fitting.compact.fit_terms`) stay within twice the
+    (rad/s) over which ``n`` terms (:func:`fitting.calibration.compact.fit_terms`) stay within twice the
     full fit's error: their median deviation from ``full`` there at most the full fit's median
     error on the data (``reference``), storage and loss (relaxation data: E(t), as measured).
     With ``points(w)`` (the DMA points inside a window w, as :func:`data_points`, or None)
@@ -431,7 +432,7 @@ def widest_window(full: compact.Series, n: int, window, reference: dict, long_te
 
 def prepare(m: FEMMaterial, terms="compact", max_terms=None, window=None, limit=None, messages=None) -> FEMMaterial:
     """The series to write; its ``note`` states the count, the window, the ripple and the
-    accuracy. ``terms``: 'compact' (default; :func:`fitting.compact.choose`: the fewest terms
+    accuracy. ``terms``: 'compact' (default; :func:`fitting.calibration.compact.choose`: the fewest terms
     within 1.5x of the full fit's medians whose loss-modulus ripple stays below the data's
     scatter, at most ``max_terms`` if given, the note saying what the cap costs) or 'full' (all
     terms, refused above ``max_terms``). ``window`` = (t_min, t_max) (s, reduced time at

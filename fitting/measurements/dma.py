@@ -20,7 +20,7 @@ Formats (detected from the content, not the extension):
   ``[#] [C] [s] [Hz] ... [MPa] [MPa]`` (as in ``dmasuite_E_0to105C``). A trailing footer
   line that is not numeric ends the data.
 * **Netzsch Eplexor Excel** (``.xls``, raw sweeps or master curve with its shift list), read
-  by :mod:`fitting.eplexor` (needs ``xlrd``). Other binary files are refused.
+  by :mod:`fitting.measurements.eplexor` (needs ``xlrd``). Other binary files are refused.
 * **one file per temperature**: any of the above without a temperature column (or with it)
   whose file name holds the temperature, e.g. ``T85.txt``, ``sweep_-20C.csv``,
   ``PA66_23.5degC.txt``. The name wins over setpoint and measured columns.
@@ -38,7 +38,7 @@ import re
 
 import numpy as np
 
-from .rawfile import Block, DMAFormatError
+from fitting.measurements.rawfile import Block, DMAFormatError
 
 __all__ = ["DMATable", "DMAFormatError", "read", "read_file", "from_arrays"]
 
@@ -72,14 +72,14 @@ class DMATable:
     dropped: int = 0
     files: tuple = ()
 
-    domain = "frequency"     # (relaxation data: fitting.relaxation.RelaxationTable, domain 'time')
+    domain = "frequency"     # (relaxation data: fitting.measurements.relaxation.RelaxationTable, domain 'time')
 
     def __len__(self) -> int:
         return len(self.f)
 
     def errors(self, material, shift) -> dict:
-        """Errors of ``material`` with ``shift`` on these raw points (:func:`fitting.evaluate.raw_errors`)."""
-        from .evaluate import raw_errors
+        """Errors of ``material`` with ``shift`` on these raw points (:func:`fitting.shared.evaluate.raw_errors`)."""
+        from fitting.shared.evaluate import raw_errors
         return raw_errors(material, shift, self)
 
     temperatures = property(lambda self: set_temperatures(self.T, self.set),
@@ -267,7 +267,7 @@ def _is_number(t):
 def blocks_from_file(path) -> list[Block]:
     with open(path, "rb") as fh:
         head = fh.read(4096)
-    from . import eplexor
+    from fitting.measurements import eplexor
     if eplexor.is_ole2(head):
         return eplexor.blocks(path)
     if b"\0" in head or head.startswith(b"PK\x03\x04"):
@@ -387,7 +387,7 @@ def _convert(block: Block, kind_override):
     if missing:
         raise DMAFormatError(path, block.header_line,
                              f"missing column(s): {', '.join(missing)}; found {block.names} (relaxation data "
-                             "need a time column t [s] and a relaxation modulus E_relax [MPa]: fitting.relaxation)")
+                             "need a time column t [s] and a relaxation modulus E_relax [MPa]: fitting.measurements.relaxation)")
     data = np.asarray(block.rows, float).reshape(len(block.rows), len(block.names))
     lines = np.asarray(block.lines)
     line = block.header_line
@@ -593,7 +593,7 @@ def from_arrays(T, f, storage, loss, kind="E", omega=None) -> DMATable:
                     kind=kind)
 
 
-_DATA_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+_DATA_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data")
 
 
 def default_data(name: str = "pyvisco") -> str:

@@ -10,11 +10,11 @@ atomically and the plots next to it (``<out stem>_master.png`` etc.). Exit codes
 1 bad data or failed fit (message on stderr), 2 bad command line. An existing output is
 never left half-written: every file goes through a temporary file and ``os.replace``.
 ``--export abaqus,ansys,lsdyna,comsol`` also writes the material for FEM codes (see
-``vjax-export``, :mod:`fitting.export`; needs ``--nu`` < 0.5 or ``--bulk-modulus``; its
+``vjax-export``, :mod:`fitting.fem.export`; needs ``--nu`` < 0.5 or ``--bulk-modulus``; its
 ``--window``, ``--isothermal`` and verification decks as there). A liquid (a melt: no
 equilibrium modulus) fits with ``--max-terms`` too: E0 is held at a floor far below the data,
 and the FEM cards write E_inf = 0.
-Compiled functions are kept in a persistent cache (:mod:`fitting.jax_cache`; ``--no-cache``).
+Compiled functions are kept in a persistent cache (:mod:`fitting.shared.jax_cache`; ``--no-cache``).
 """
 from __future__ import annotations
 
@@ -23,7 +23,8 @@ import gc
 import os
 import sys
 
-from . import export_cli, jax_cache
+from fitting.cli import export as export_cli
+from fitting.shared import jax_cache
 
 
 def _parser():
@@ -69,7 +70,7 @@ def output_json(prog, path):
 
 def _export(args, out) -> list:
     """Write the FEM files of ``--export`` next to the material JSON ``out``."""
-    from . import export
+    from fitting.fem import export
     m = export.load(out, nu=args.nu, bulk_modulus=args.bulk_modulus)
     stem = os.path.splitext(os.path.basename(out))[0]
     return export_cli.run(m, args.export, os.path.dirname(out), stem, args,
@@ -97,12 +98,12 @@ def main(argv=None) -> int:
     # effect when numpy is not loaded yet, i.e. from the command line
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     if not args.no_plots:
-        from . import figures
+        from fitting.calibration import figures
         figures.start_workers()     # matplotlib's import in a fork server, on another core
     import jax
     jax.config.update("jax_enable_x64", True)
     jax_cache.enable(args.no_cache)
-    from .calibration import calibrate
+    from fitting.calibration.pipeline import calibrate
     # everything loaded so far (JAX, vjax, numpy) lives as long as the process:
     # exempt it from the cyclic garbage collector, whose full collections, triggered by the
     # many objects that tracing allocates, would walk it again and again (about
@@ -118,14 +119,14 @@ def main(argv=None) -> int:
         rep.save(out, mat, shift, kind, inputs=[os.path.abspath(p) for p in args.inputs])
         written = [out]
         if not args.no_plots:
-            from . import dma, relaxation
+            from fitting.measurements import dma, relaxation
             reader = relaxation if rep.domain == "time" else dma
             table = reader.read(args.inputs, kind=args.kind, drop_nonpositive=args.drop_nonpositive)
             stem = os.path.splitext(out)[0]
             fit_mat = mat
             if rep.kind == "G" and kind == "E":  # plot against the data's own modulus
-                from .calibration import convert_modulus
-                from .evaluate import tensile_over_shear
+                from fitting.calibration.pipeline import convert_modulus
+                from fitting.shared.evaluate import tensile_over_shear
                 fit_mat = convert_modulus(mat, 1.0 / tensile_over_shear(args.nu))
             written += figures.save_all(os.path.dirname(stem), os.path.basename(stem), table, fit_mat, shift,
                                         rep.data_shift, rep.laws)

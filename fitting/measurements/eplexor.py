@@ -1,5 +1,5 @@
 """Netzsch Gabo Eplexor Excel exports (``.xls``, the Eplexor software's "Excel Export!" with its
-default template), read into :mod:`fitting.dma` blocks.
+default template), read into :mod:`fitting.measurements.dma` blocks.
 
 * **raw** files: sheet "Exported Data", a row of names (``f``, ``T``, ``E'``, ``E''`` or
   ``G'``, ``G''``, ...) and a row of units (``Hz``, ``°C``, ``MPa``), one row per point, the
@@ -23,7 +23,7 @@ import os
 
 import numpy as np
 
-from .rawfile import Block, DMAFormatError
+from fitting.measurements.rawfile import Block, DMAFormatError
 
 __all__ = ["is_ole2", "blocks", "shift_list"]
 
@@ -150,7 +150,7 @@ def _master_sets(book, path, col, data, rows):
 
 
 def blocks(path) -> list:
-    """The :class:`fitting.rawfile.Block` of an Eplexor .xls file (raw or master curve)."""
+    """The :class:`fitting.measurements.rawfile.Block` of an Eplexor .xls file (raw or master curve)."""
     book = _book(path)
     sh = _sheet(book, "Exported Data", path)
     if sh.nrows < 3:

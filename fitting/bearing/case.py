@@ -4,7 +4,7 @@
 :class:`Case` in SI; anything wrong raises :class:`CaseError` naming the file, the key and what
 is expected (unknown keys, missing units, non-positive sizes, a clearance not below the radius,
 a material file that does not load). The schema, with every key, is in docs/bearing_files.md;
-values with a dimension are strings with their unit (:mod:`fitting.case_units`).
+values with a dimension are strings with their unit (:mod:`fitting.bearing.case_units`).
 """
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .case_table import REQUIRED, CaseError, Table, positive_quantity, sweep
+from fitting.bearing.case_table import REQUIRED, CaseError, Table, positive_quantity, sweep
 
 __all__ = ["Case", "Body", "CaseError", "load_case", "SCENES"]
 
@@ -89,7 +89,7 @@ def _material(t: Table, base: Path):
     import vjax
     v = t.raw("material")
     if isinstance(v, str):
-        from .io import load_material
+        from fitting.calibration.io import load_material
         path = (base / v).resolve()
         try:
             mat, shift, modulus = load_material(path)
@@ -179,24 +179,24 @@ def _lubricant(root: Table, scene: str):
         if t is not None:
             raise root.error("lubricant", f"a {scene} is dry: remove the [lubricant] table")
         return None, "none (dry contact)"
-    from .torque import oil_viscosity, water_viscosity
+    from vjax import Lubricant
     law = t.choice("law", ("constant", "oil", "water"), "constant")
     if law == "constant":
         eta = t.quantity("viscosity", "viscosity")
-        f, what = (lambda T, eta=eta: eta), f"isoviscous, {eta:g} Pa s"
+        lubricant, what = Lubricant.constant(eta), f"isoviscous, {eta:g} Pa s"
     elif law == "water":
-        f, what = water_viscosity, "water (Vogel's equation)"
+        lubricant, what = Lubricant.water(), "water (Vogel's equation)"
     else:
         nu40 = t.quantity("nu40", "kinematic viscosity")
         nu100 = t.quantity("nu100", "kinematic viscosity")
         rho = t.quantity("density", "density", "860 kg/m3")
-        try:
-            f = oil_viscosity(nu40, nu100, rho)
-        except ValueError as e:
-            raise t.error("nu100", str(e)) from None
+        if not nu100 < nu40:
+            raise t.error("nu100", f"must be below nu40 (an oil thins when heated), got nu40={nu40:g} cSt, "
+                                   f"nu100={nu100:g} cSt")
+        lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=rho)
         what = f"oil, Walther (ASTM D341) through nu40 = {nu40:g} cSt, nu100 = {nu100:g} cSt, density {rho:g} kg/m3"
     t.close()
-    return f, what
+    return lubricant.viscosity, what     # Pa s at T (C)
 
 
 def load_case(path, overrides=()) -> Case:

@@ -1,6 +1,6 @@
 """Compact Prony series for finite-element codes: the fewest terms that keep a fit's accuracy.
 
-A smooth spectrum (:mod:`fitting.spectrum`) puts three relaxation times in every decade of
+A smooth spectrum (:mod:`fitting.calibration.spectrum`) puts three relaxation times in every decade of
 the data's reduced range plus a decade each side: 60 to 100 terms, each of which is internal
 state at every integration point of an FEM model. Over the data's window fewer hold the same
 accuracy and smoothness. Two kinds of n-term series, every relaxation time within the
@@ -11,7 +11,7 @@ measured; never 1e-20 s):
   (:func:`placement`), moduli by non-negative least squares on the full fit's storage and loss;
 * :func:`fit_terms` (free, accurate with few terms, rippled): free times and moduli,
   Levenberg-Marquardt on log residuals from a non-negative least-squares start
-  (:mod:`fitting.optim`), to the DMA points (robust) or to the full series.
+  (:mod:`fitting.shared.optim`), to the DMA points (robust) or to the full series.
 
 Why placement decides smoothness: a Prony loss modulus is a sum of Debye peaks; terms h
 decades apart leave a ripple of relative amplitude 2 sech(pi^2 / (h ln 10)) (:func:`ripple`:
@@ -52,8 +52,8 @@ import math
 
 import numpy as np
 
-from . import optim
-from .evaluate import loss_extrema
+from fitting.shared import optim
+from fitting.shared.evaluate import loss_extrema
 
 __all__ = ["Series", "Choice", "fit_terms", "placed_terms", "placement", "ripple", "ripple_of", "scatter",
            "choose", "deviation", "is_liquid", "FREE_MAX_TERMS", "LIQUID", "TOLERANCE", "MARGIN_DECADES"]
@@ -65,7 +65,7 @@ LIQUID = 1e-3         # E0 below this share of the storage modulus at the data's
 TOLERANCE = 1.5
 MARGIN_DECADES = 0.5
 SAMPLES_PER_DECADE = 10
-ROBUST = 0.03         # decades, as fitting.calibration.ROBUST
+ROBUST = 0.03         # decades, as fitting.calibration.pipeline.ROBUST
 DATA_FIT = dict(robust=ROBUST, weights=(4.0, 1.0))   # fits to DMA points: storage 4:1 (docs/fem_export.md)
 LN10 = math.log(10.0)
 
@@ -74,7 +74,7 @@ LN10 = math.log(10.0)
 class Series:
     """A Prony series M(t) = E0 + sum_k moduli_k exp(-t / times_k): E0 and moduli in the
     modulus' unit (Pa), times in s, times increasing (the attribute names of
-    :class:`vjax.Material`, so :mod:`fitting.evaluate` takes it as it is)."""
+    :class:`vjax.Material`, so :mod:`fitting.shared.evaluate` takes it as it is)."""
 
     E0: float
     moduli: np.ndarray

@@ -6,8 +6,8 @@ Each function draws on a new matplotlib :class:`~matplotlib.figure.Figure` on th
 (no pyplot: no display, no global figure list) and, when ``path`` is given, saves it
 atomically (temporary file + os.replace). The layouts are fixed margins in inches (see
 :func:`_figure`): the constrained-layout engine cost half the drawing time of a cached
-``vjax-fit`` call. :mod:`fitting.figures` draws a calibration's set of figures (in parallel
-worker processes for the command line); :mod:`fitting.calibration` and the command lines
+``vjax-fit`` call. :mod:`fitting.calibration.figures` draws a calibration's set of figures (in parallel
+worker processes for the command line); :mod:`fitting.calibration.pipeline` and the command lines
 import this module (and matplotlib) only when they plot.
 """
 from __future__ import annotations
@@ -20,7 +20,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from . import evaluate, files
+from fitting.shared import evaluate
+from fitting.shared import files
 
 __all__ = ["master_curve", "relaxation_curve", "shift_factors", "residuals", "spectrum", "temperature_sweep", "van_gurp_palmen",
            "torque_fit", "moduli"]
@@ -121,9 +122,9 @@ def shift_factors(data_shift, shift, path=None, laws=None):
     with the material's shift law and both closed-form laws: the material's own WLF or
     Arrhenius, the other one (or both, for a table law) from ``laws`` ({'WLF': law, ...}, e.g.
     fitted end to end by :func:`fitting.calibrate`) or else fitted to the per-sweep factors
-    (:func:`fitting.master.fit_law`); the legend gives each one's rms distance from the table
+    (:func:`fitting.calibration.master.fit_law`); the legend gives each one's rms distance from the table
     and says which law the material uses."""
-    from .master import fit_law
+    from fitting.calibration.master import fit_law
     T, values = np.asarray(data_shift.T, float), np.asarray(data_shift.values, float)
     if T.size == 0 or T.shape != values.shape or not (np.all(np.isfinite(T)) and np.all(np.isfinite(values))):
         raise ValueError("data_shift must hold finite per-sweep shift factors (T and log10 a_T of equal length)")
@@ -266,7 +267,7 @@ def spectrum(material, path=None):
 
 
 def relaxation_curve(table, material, shift, path=None):
-    """Relaxation data (a :class:`fitting.relaxation.RelaxationTable`) against reduced time
+    """Relaxation data (a :class:`fitting.measurements.relaxation.RelaxationTable`) against reduced time
     t / a_T, coloured by temperature, with the fitted E(t) at T_ref."""
     tr = table.t / 10.0 ** evaluate.log10_aT(shift, table.T)
     fig, ax, cax = _figure(6.4, 4.4, title=True, colorbar=True)

@@ -16,7 +16,7 @@ minimize
 r_i the log10 residuals of storage and loss (or of E(t)) on the raw unshifted points. The
 penalty is on the second difference of the log spectrum: a smooth, positive spectrum (the
 moduli are positive by construction) whose shape the data fix and whose wiggles they do not.
-Levenberg-Marquardt with JAX Jacobians solves it (:mod:`fitting.optim`).
+Levenberg-Marquardt with JAX Jacobians solves it (:mod:`fitting.shared.optim`).
 
 Choice of lam: generalized cross-validation (Craven and Wahba 1979; Golub, Heath and Wahba
 1979) on the problem linearized at the solution,
@@ -45,10 +45,11 @@ import numpy as np
 
 from vjax import Material
 
-from . import evaluate, jax_cache, optim
-from .evaluate import count_extrema, loss_extrema
-from .dma import set_temperatures
-from .prony import COV_RCOND, LN10, PronyFit, cauchy_residual, law_eval, law_spec
+from fitting.shared import evaluate
+from fitting.shared import jax_cache, optim
+from fitting.shared.evaluate import count_extrema, loss_extrema
+from fitting.measurements.dma import set_temperatures
+from fitting.calibration.prony import COV_RCOND, LN10, PronyFit, cauchy_residual, law_eval, law_spec
 
 __all__ = ["count_extrema", "loss_extrema", "SmoothData", "smooth_fit", "LAMBDAS"]
 
@@ -72,7 +73,7 @@ class SmoothData:
 
     @classmethod
     def from_table(cls, table) -> "SmoothData":
-        """From a :class:`fitting.dma.DMATable` (frequency) or :class:`fitting.dma.RelaxationTable`."""
+        """From a :class:`fitting.measurements.dma.DMATable` (frequency) or :class:`fitting.measurements.dma.RelaxationTable`."""
         if getattr(table, "domain", "frequency") == "time":
             return cls(table.t, table.modulus, table.modulus, table.T, table.set, "time")
         return cls(table.omega, table.storage, table.loss, table.T, table.set, "frequency")

@@ -32,8 +32,8 @@ import argparse
 import os
 import sys
 
-from . import jax_cache
-from .cli import output_json
+from fitting.shared import jax_cache
+from fitting.cli.fit import output_json
 
 
 def _parser():
@@ -102,7 +102,7 @@ def _parser():
 
 
 def _model(args):
-    from . import torque as ft
+    from fitting import torque as ft
     hA = args.heat_transfer
     if args.scene == "journal":
         viscosity = args.viscosity or (ft.oil_viscosity(*_oil(args.oil)) if args.oil else ft.water_viscosity)
@@ -193,8 +193,8 @@ def _tensile(material, modulus, table):
     """E = 2 (1 + nu) G for a shear start material and a shear DMA table: the bearing scenes
     and the DMA term work with E."""
     import dataclasses
-    from .calibration import convert_modulus
-    from .evaluate import tensile_over_shear
+    from fitting.calibration.pipeline import convert_modulus
+    from fitting.shared.evaluate import tensile_over_shear
     f = tensile_over_shear(material.nu)
     if modulus == "G":
         material = convert_modulus(material, f)
@@ -219,8 +219,8 @@ def main(argv=None) -> int:
     import numpy as np
     from vjax import WLF
 
-    from . import io
-    from . import torque as ft
+    from fitting.calibration import io
+    from fitting import torque as ft
 
     written = []
     try:
@@ -232,7 +232,7 @@ def main(argv=None) -> int:
                   f"it (C1 = {float(shift.C1):.5g}, C2 = {float(shift.C2):.5g} K)", file=sys.stderr)
         table = None
         if args.dma:
-            from . import dma
+            from fitting.measurements import dma
             table = dma.read(args.dma)
         material, table = _tensile(material, modulus, table)
         model = _model(args)
@@ -247,7 +247,7 @@ def main(argv=None) -> int:
         rows = [[name, before, after, s, "yes" if fit.ident["sd"][name] < 0.1 else "no"]
                 for name, before, after, s in fit.table()]
         if not args.no_plots:
-            from . import plots
+            from fitting.calibration import plots
             sigma = data.sigma(args.rel_scatter)
             written.append(plots.torque_fit(data, {"fit": fit}, sigma, stem + "_torque.png"))
             written.append(plots.moduli([(material, "start", "k:"), (fit.material, "fitted", "C2-")],

@@ -7,10 +7,10 @@ persistent compilation cache of the command-line tools skips only XLA's compilat
 0.4 s of a cached ``vjax-fit`` call. The same formulas in numpy take microseconds.
 
 The formulas are those of :class:`vjax.Material` (Prony series), :class:`~vjax.WLF`,
-:class:`~vjax.Arrhenius` and :class:`fitting.master.ShiftTable` (the table's
-interpolation as :meth:`~fitting.master.ShiftTable.log10_aT` computes it); any other law is evaluated
+:class:`~vjax.Arrhenius` and :class:`fitting.calibration.master.ShiftTable` (the table's
+interpolation as :meth:`~fitting.calibration.master.ShiftTable.log10_aT` computes it); any other law is evaluated
 through one jitted function. Importing this module does not import vjax or JAX (so that
-:mod:`fitting.plots` does not either; see :mod:`fitting`).
+:mod:`fitting.calibration.plots` does not either; see :mod:`fitting`).
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ def _float(a):
 
 
 def table_log10_aT(x, y, T):
-    """:meth:`fitting.master.ShiftTable.log10_aT` in numpy: linear between the temperatures
+    """:meth:`fitting.calibration.master.ShiftTable.log10_aT` in numpy: linear between the temperatures
     ``x``, linearly extrapolated from the two end points beyond them."""
     if x.shape[0] == 1:
         return np.zeros_like(T) + y[0]
@@ -52,7 +52,7 @@ def log10_aT(law, T) -> np.ndarray:
     from vjax import Arrhenius, WLF
     from vjax.materials import GAS_CONSTANT, KELVIN
     T = _float(T)
-    if hasattr(law, "values") and hasattr(law, "T"):     # a fitting.master.ShiftTable (not imported:
+    if hasattr(law, "values") and hasattr(law, "T"):     # a fitting.calibration.master.ShiftTable (not imported:
         return table_log10_aT(_float(law.T), _float(law.values), T)   # master imports this module)
     if isinstance(law, WLF):
         C1, C2, T_ref = float(law.C1), float(law.C2), float(law.T_ref)
@@ -88,9 +88,9 @@ def relaxation(material, t) -> np.ndarray:
 
 
 def raw_errors(material, shift, table) -> dict:
-    """Errors on the raw unshifted points of a :class:`fitting.dma.DMATable`: median and 90th
+    """Errors on the raw unshifted points of a :class:`fitting.measurements.dma.DMATable`: median and 90th
     percentile of |log10(pred/meas)| for storage and loss separately, plus the rms of all
-    log10 residuals (:func:`fitting.prony.log_residual` is the JAX version for derivatives)."""
+    log10 residuals (:func:`fitting.calibration.prony.log_residual` is the JAX version for derivatives)."""
     return errors_at(material, table.omega * 10.0 ** log10_aT(shift, table.T), table.storage, table.loss)
 
 

@@ -35,8 +35,8 @@ import numpy as np
 from vjax import Arrhenius, WLF
 from vjax.materials import GAS_CONSTANT, KELVIN
 
-from .dma import DMATable, DMAFormatError
-from .evaluate import table_log10_aT
+from fitting.measurements.dma import DMATable, DMAFormatError
+from fitting.shared.evaluate import table_log10_aT
 
 __all__ = ["ShiftTable", "segment", "shift_factors", "fit_wlf", "fit_arrhenius", "fit_law", "read_shift_file",
            "pair_shift"]

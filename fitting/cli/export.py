@@ -3,10 +3,10 @@
 
 The shear relaxation modulus G(t) = E(t) / (2 (1 + nu)) and an elastic bulk modulus K (from
 ``--nu`` < 0.5 or ``--bulk-modulus``) are written in each code's own normalization, with the
-WLF or Arrhenius shift law (see :mod:`fitting.export`). The series is compact by default: the
+WLF or Arrhenius shift law (see :mod:`fitting.fem.export`). The series is compact by default: the
 fewest terms whose medians on the DMA data named in the JSON stay within 1.5x of the full
 fit's and whose loss-modulus ripple stays below the data's scatter about the full fit
-(:mod:`fitting.compact`; ``--max-terms N`` caps the count and the output says what that
+(:mod:`fitting.calibration.compact`; ``--max-terms N`` caps the count and the output says what that
 costs); ``--full-spectrum`` writes every term. Every card's header states its term count,
 window, ripple and accuracy. ``--window T_MIN,T_MAX`` (reduced times at T_ref, s) is the
 working window of the analysis and the main lever for fewer terms: LS-DYNA gets the best 5
@@ -66,7 +66,7 @@ def add_arguments(p, fit: bool = False) -> None:
 
 def check_arguments(args, fit: bool = False):
     """The first problem with the export options, or None."""
-    from .export import parse_formats
+    from fitting.fem.export import parse_formats
     try:
         parse_formats(args.export if fit else args.format)
     except ValueError as e:
@@ -108,7 +108,7 @@ def parse_window(text):
 
 def run(m, formats, out_dir, stem, args, max_terms=None) -> list:
     """Export ``m`` with the options of :func:`add_arguments`, printing the choices made."""
-    from . import export
+    from fitting.fem import export
     notes = []
     written = export.export(m, formats, out_dir, stem, units=args.units, temperature=args.temperature,
                             max_terms=max_terms, density=args.density,
@@ -151,7 +151,7 @@ def main(argv=None) -> int:
         p.print_usage(sys.stderr)
         print(f"vjax-export: error: {problem}", file=sys.stderr)
         return 2
-    from . import export
+    from fitting.fem import export
     out_dir = os.path.abspath(args.out_dir or os.path.dirname(os.path.abspath(args.material)))
     stem = args.stem or os.path.splitext(os.path.basename(args.material))[0]
     try:

@@ -1,6 +1,6 @@
 """What the DMA readers share: the error a bad file raises and the rows of one file (or one
 TRIOS step) before unit conversion. A leaf module, so that the readers of each format
-(:mod:`fitting.dma`, :mod:`fitting.eplexor`, :mod:`fitting.relaxation`) import it and not
+(:mod:`fitting.measurements.dma`, :mod:`fitting.measurements.eplexor`, :mod:`fitting.measurements.relaxation`) import it and not
 each other."""
 from __future__ import annotations
 

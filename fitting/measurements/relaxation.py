@@ -1,6 +1,6 @@
 """Relaxation (time-domain) data: relaxation modulus versus time at several temperatures.
 
-Formats (text, detected from the header like :mod:`fitting.dma`):
+Formats (text, detected from the header like :mod:`fitting.measurements.dma`):
 
 * **pyvisco CSV**: ``t,E_relax,T,Set`` / ``s,MPa,C,-`` (or ``G_relax``);
 * **tidy CSV**: ``t [s], E(t) [MPa], T [C]`` (``time``, ``E_relax``, ``relaxation modulus``;
@@ -9,9 +9,9 @@ Formats (text, detected from the header like :mod:`fitting.dma`):
 
 :func:`read` returns a :class:`RelaxationTable`. :func:`fitting.calibrate` (and ``vjax-fit``)
 detect such files by :func:`is_relaxation` and fit them with the smooth-spectrum Prony fit
-(:mod:`fitting.spectrum`) of E(t) = E0 + sum_k E_k exp(-(t / a_T) / tau_k) with t / a_T the
+(:mod:`fitting.calibration.spectrum`) of E(t) = E0 + sum_k E_k exp(-(t / a_T) / tau_k) with t / a_T the
 reduced time; shift factors start from the overlap of the log E(t) curves
-(:func:`fitting.master.shift_factors` on the curves against 1/t).
+(:func:`fitting.calibration.master.shift_factors` on the curves against 1/t).
 """
 from __future__ import annotations
 
@@ -22,8 +22,9 @@ import re
 
 import numpy as np
 
-from . import dma, evaluate
-from .rawfile import DMAFormatError
+from fitting.measurements import dma
+from fitting.shared import evaluate
+from fitting.measurements.rawfile import DMAFormatError
 
 __all__ = ["RelaxationTable", "read", "is_relaxation"]
 
@@ -68,7 +69,7 @@ class RelaxationTable:
 
     def as_rate_table(self) -> dma.DMATable:
         """The curves as a frequency-like table (omega = 1/t, both moduli = E(t)), for the
-        overlap shift of :func:`fitting.master.shift_factors` (which moves curves along
+        overlap shift of :func:`fitting.calibration.master.shift_factors` (which moves curves along
         log omega; t / a_T = 1 / (a_T omega))."""
         return dma.DMATable(T=self.T, T_measured=self.T.copy(), f=1.0 / (2 * math.pi * self.t), omega=1.0 / self.t,
                             storage=self.modulus, loss=self.modulus, set=self.set,
@@ -112,7 +113,7 @@ def is_relaxation(paths) -> bool:
 
 def read(paths, kind=None, drop_nonpositive=False) -> RelaxationTable:
     """Read relaxation data (module docstring) from one or more files into a
-    :class:`RelaxationTable`. Raises :class:`fitting.dma.DMAFormatError` naming the file, line
+    :class:`RelaxationTable`. Raises :class:`fitting.measurements.dma.DMAFormatError` naming the file, line
     and problem (missing columns or units, NaN, non-positive time or modulus)."""
     if kind is not None and kind not in ("E", "G"):
         raise ValueError(f"kind must be 'E' or 'G', got {kind!r}")

@@ -1,15 +1,15 @@
 """One-call calibration: DMA files -> Prony material + shift law (+ JSON and plots).
 
-:func:`calibrate` chains the steps of :mod:`fitting.dma` (or :mod:`fitting.relaxation`),
-:mod:`fitting.master`, :mod:`fitting.spectrum` and :mod:`fitting.prony`:
+:func:`calibrate` chains the steps of :mod:`fitting.measurements.dma` (or :mod:`fitting.measurements.relaxation`),
+:mod:`fitting.calibration.master`, :mod:`fitting.calibration.spectrum` and :mod:`fitting.calibration.prony`:
 
 1. read the files: frequency sweeps, or relaxation curves E(t) (detected from the header);
 2. shift factors per sweep from the overlap of the storage (or E(t)) curves, or the user's table;
-3. method 'smooth' (default, :func:`fitting.spectrum.smooth_fit`): relaxation times fixed on a
+3. method 'smooth' (default, :func:`fitting.calibration.spectrum.smooth_fit`): relaxation times fixed on a
    grid at 3 per decade, a second-difference penalty on ln E_k whose weight generalized
    cross-validation chooses, refined end to end on the raw data with the per-sweep table;
    method 'free': NNLS starts at several densities refined with free times
-   (:func:`fitting.prony.refine`), the number of terms by BIC after refinement;
+   (:func:`fitting.calibration.prony.refine`), the number of terms by BIC after refinement;
 4. both weight storage 5:1 over loss and use a Cauchy loss of scale 0.03 decades (constants
    below);
 5. WLF and Arrhenius are always fitted as well, starting from the refined table, end to end;
@@ -29,12 +29,18 @@ import numpy as np
 from vjax import checks
 from vjax import Material
 
-from . import compact, dma, evaluate, io, master, prony, relaxation, spectrum
-from .evaluate import tensile_over_shear
+from fitting.calibration import compact
+from fitting.measurements import dma
+from fitting.shared import evaluate
+from fitting.calibration import io
+from fitting.calibration import master, prony
+from fitting.measurements import relaxation
+from fitting.calibration import spectrum
+from fitting.shared.evaluate import tensile_over_shear
 
 __all__ = ["calibrate", "Report"]
 
-# refinement settings (see :func:`fitting.prony.refine` and :func:`fitting.spectrum.smooth_fit`):
+# refinement settings (see :func:`fitting.calibration.prony.refine` and :func:`fitting.calibration.spectrum.smooth_fit`):
 # storage counts five times as much as loss (the smoother, better-superposing half of DMA data),
 # Cauchy loss with scale 0.03 decades (7%: a few inconsistent points, typically loss near the
 # glassy plateau, do not bend the fit); method 'free' keeps the relaxation times within the
@@ -117,14 +123,14 @@ class Report:
         return "\n".join(lines)
 
     def save(self, path, material, shift, modulus, **fit_extra) -> None:
-        """Write the material JSON (:mod:`fitting.io`) with this report's errors, the shift-law
+        """Write the material JSON (:mod:`fitting.calibration.io`) with this report's errors, the shift-law
         alternatives (``shift_alternatives``) and the smoothing in it, atomically."""
         fit = {"errors": self.errors, "terms": self.terms, "law": self.law, "method": self.method,
                "data_kind": self.kind, "domain": self.domain, "points": self.n_points, **fit_extra}
         if self.smoothing:
             fit["smoothing"] = self.smoothing
         if self.window:
-            fit["window_rad_s"] = list(self.window)     # reduced rates of the data at T_ref (fitting.export)
+            fit["window_rad_s"] = list(self.window)     # reduced rates of the data at T_ref (fitting.fem.export)
         io.save_material(path, material, shift, modulus=modulus, uncertainty=self.uncertainty, fit=fit,
                          shift_alternatives=self.alternatives)
 
@@ -176,7 +182,7 @@ def _free_fits(table, start, nu, densities, max_iter):
 
 
 def _smooth_fits(table, start, nu, per_decade, max_terms):
-    """Smooth spectrum (:mod:`fitting.spectrum`): the penalty weight chosen by GCV with the
+    """Smooth spectrum (:mod:`fitting.calibration.spectrum`): the penalty weight chosen by GCV with the
     per-sweep table, then WLF and Arrhenius refined end to end with that weight from the table
     fit. Returns ({law: PronyFit}, info of the table fit).
 
@@ -208,9 +214,9 @@ E0_FLOOR = 1e-12     # relative to the glassy modulus: the start of a liquid's l
 
 
 def _few_terms(table, fit, n):
-    """``n`` terms with free relaxation times from the smooth ``fit``: :func:`fitting.compact.fit_terms`
+    """``n`` terms with free relaxation times from the smooth ``fit``: :func:`fitting.calibration.compact.fit_terms`
     to the points under the fit's law (times within the data's reduced-time window plus
-    ``compact.MARGIN_DECADES``), refined end to end with the law (:func:`fitting.prony.refine`,
+    ``compact.MARGIN_DECADES``), refined end to end with the law (:func:`fitting.calibration.prony.refine`,
     same window). Two starts, times log-spaced from edge to edge of the window and at the
     centres of n equal cells of it; the lower cost is kept (the refinement has local minima,
     some 20 % apart in loss error)."""
@@ -245,18 +251,18 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
     """Calibrate a Prony material and shift law from DMA frequency sweeps or relaxation data.
 
     Args:
-      paths: DMA file(s)/directory(ies), see :func:`fitting.dma.read`, or relaxation-modulus
-        files (:mod:`fitting.relaxation`, detected from the content).
+      paths: DMA file(s)/directory(ies), see :func:`fitting.measurements.dma.read`, or relaxation-modulus
+        files (:mod:`fitting.measurements.relaxation`, detected from the content).
       T_ref: reference temperature (C); need not be a measured one.
       out_dir: if given, writes ``<stem>.json`` and the plots there (atomically).
       law: 'WLF', 'Arrhenius', 'table' or 'auto' (lowest BIC of the three). WLF and Arrhenius
         are always fitted; the ones not chosen are reported as alternatives.
       nu: Poisson's ratio stored in the material (and used for G -> E).
       kind: override 'E'/'G' from the files. tensile: convert shear data to E.
-      shifts: user shift factors (a :class:`fitting.master.ShiftTable` or a CSV path with
+      shifts: user shift factors (a :class:`fitting.calibration.master.ShiftTable` or a CSV path with
         T [C], log10 a_T); used as the start instead of the data overlap.
       method: 'smooth' (relaxation times on a fixed grid at ``per_decade``, smoothness penalty
-        chosen by GCV: a loss modulus without ringing, :mod:`fitting.spectrum`) or 'free'
+        chosen by GCV: a loss modulus without ringing, :mod:`fitting.calibration.spectrum`) or 'free'
         (free relaxation times, their number by BIC: fewer terms; frequency data only).
       max_terms: cap on the number of Prony terms ('smooth': the grid gets coarser; where that
         would leave less than one time per decade, frequency data get ``max_terms`` free times
@@ -342,7 +348,7 @@ def calibrate(paths, T_ref, out_dir=None, *, law="auto", nu=0.5, kind=None, tens
         report.save(jpath, mat, shift, out_kind, files=list(table.files))
         report.outputs.append(jpath)
         if plots_:
-            from . import figures
+            from fitting.calibration import figures
             # plots show the data in their own modulus, hence the fitted (unconverted) material
             report.outputs += figures.save_all(out_dir, stem, table, fit.material, shift, fits["table"].shift,
                                                report.laws)

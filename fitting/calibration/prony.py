@@ -26,7 +26,7 @@ Steps:
 3. :func:`refine` - all parameters (log E0, log E_k, log tau_k and the shift-law parameters:
    C1, C2 for WLF, Ea for Arrhenius, or one log10 a_T per sweep for a table) minimize the
    log residual on the **raw unshifted** data by Levenberg-Marquardt with JAX Jacobians
-   (:mod:`fitting.optim`). Positivity holds by construction (log parameters; WLF C2 is kept
+   (:mod:`fitting.shared.optim`). Positivity holds by construction (log parameters; WLF C2 is kept
    above the asymptote, C2 > T_ref - min T). The relaxation times are held within the
    reduced-frequency range of the data plus ``tau_margin`` decades by a penalty residual (an
    arm relaxing below the data would stand in for E0). The Jacobian is analytic and the
@@ -48,10 +48,11 @@ import numpy as np
 from vjax import Arrhenius, Material, WLF
 from vjax.materials import GAS_CONSTANT, KELVIN
 
-from . import optim, evaluate
-from .evaluate import raw_errors
-from .dma import DMATable
-from .master import ShiftTable, segment
+from fitting.shared import optim
+from fitting.shared import evaluate
+from fitting.shared.evaluate import raw_errors
+from fitting.measurements.dma import DMATable
+from fitting.calibration.master import ShiftTable, segment
 
 __all__ = ["PronyFit", "fit_master", "choose_terms", "refine", "raw_errors", "log_residual"]
 
