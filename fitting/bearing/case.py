@@ -204,9 +204,12 @@ def load_case(path, overrides=()) -> Case:
     text) pairs applied first (the CLI's ``--set``). Raises :class:`CaseError`."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")     # -sig: an editor's byte-order mark
     except OSError as e:
         raise CaseError(path, None, f"cannot read the case file ({e.strerror})") from None
+    except UnicodeDecodeError:
+        raise CaseError(path, None, "not a UTF-8 text file (TOML is UTF-8: a file saved as UTF-16, or a "
+                                    "binary file?)") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:

@@ -33,6 +33,7 @@ import time
 from pathlib import Path
 
 from fitting.shared import jax_cache
+from fitting.cli.interrupt import exits_on_interrupt
 
 
 def _parser():
@@ -73,6 +74,7 @@ def _replace_folder(tmp: Path, target: Path):
             shutil.rmtree(old, ignore_errors=True)
 
 
+@exits_on_interrupt("vjax-bearing")
 def main(argv=None) -> int:
     """Console entry point; returns the exit status (also when called from Python)."""
     args = _parser().parse_args(argv)
@@ -94,6 +96,8 @@ def main(argv=None) -> int:
         target = out / case.name
         if target.exists() and not target.is_dir():
             raise CaseError(args.case, "case.name", f"{target} exists and is a file, not a folder")
+        if not args.check:
+            _check_writable(out, args.case)
     except CaseError as e:
         print(f"vjax-bearing: error: {e}", file=sys.stderr)
         return 2
@@ -107,8 +111,8 @@ def main(argv=None) -> int:
 
     t0 = time.perf_counter()
     points = bearing_run.run_case(case, progress=not args.quiet)
-    out.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{case.name}.", dir=out))
+    _remove_stale(out, case.name)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{case.name}.{os.getpid()}.", dir=out))
     try:
         files = bearing_output.write_outputs(case, points, tmp, time.perf_counter() - t0,
                                              getattr(vjax, "__version__", "0.1.0"))
@@ -123,6 +127,36 @@ def main(argv=None) -> int:
     print(f"vjax-bearing: wrote {target}/ ({', '.join(files)}); {len(points) - failed} of {len(points)} points "
           f"converged", file=sys.stderr)
     return 1 if failed else 0
+
+
+def _check_writable(out: Path, case_path):
+    """Before any work: ``--out`` can be made and written to (a folder is written whole, so the
+    sweep's results would otherwise be lost at its end)."""
+    from fitting.bearing.case import CaseError
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        Path(tempfile.mkdtemp(prefix=".vjax-bearing-check.", dir=out)).rmdir()
+    except OSError as e:
+        raise CaseError(case_path, None, f"--out {out}: cannot write there ({e.strerror})") from None
+
+
+def _remove_stale(out: Path, name: str):
+    """The temporary folders ``.<name>.<pid>.*`` a killed run of this case left in ``out`` (its
+    process no longer running); a concurrent run's own folder is left alone."""
+    for folder in out.glob(f".{name}.*.*"):
+        pid = folder.name[len(name) + 2:].split(".")[0]
+        if folder.is_dir() and pid.isdigit() and not _running(int(pid)):
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:          # another user's process: running
+        return True
+    return True
 
 
 def _umask() -> int:

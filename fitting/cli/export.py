@@ -30,8 +30,11 @@ pyvisco example, against 30 over its 27 decades without ``--window``)::
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
+
+from fitting.cli.interrupt import exits_on_interrupt
 
 
 def add_arguments(p, fit: bool = False) -> None:
@@ -86,6 +89,11 @@ def check_arguments(args, fit: bool = False):
                 "(every temperature in the files is in it)")
     if args.density is not None and not (0 < args.density < float("inf")):
         return f"--density must be a finite number > 0 (kg/m^3), got {args.density}"
+    if args.isothermal is not None and not math.isfinite(args.isothermal):
+        return f"--isothermal must be a finite temperature (in the --temperature scale), got {args.isothermal}"
+    stem = getattr(args, "stem", None)
+    if stem is not None and (not stem or os.path.basename(stem) != stem or stem in (".", "..")):
+        return f"--stem must be a file name without a folder (the files go in --out-dir), got {stem!r}"
     try:
         parse_window(args.window)
     except ValueError as e:
@@ -142,6 +150,7 @@ def _parser():
     return p
 
 
+@exits_on_interrupt("vjax-export")
 def main(argv=None) -> int:
     """Console entry point; returns the exit code."""
     p = _parser()

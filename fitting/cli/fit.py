@@ -25,6 +25,7 @@ import sys
 
 from fitting.cli import export as export_cli
 from fitting.shared import jax_cache
+from fitting.cli.interrupt import exits_on_interrupt
 
 
 def _parser():
@@ -77,6 +78,7 @@ def _export(args, out) -> list:
                           max_terms=None)
 
 
+@exits_on_interrupt("vjax-fit")
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
     p = _parser()

@@ -34,6 +34,7 @@ import sys
 
 from fitting.shared import jax_cache
 from fitting.cli.fit import output_json
+from fitting.cli.interrupt import exits_on_interrupt
 
 
 def _parser():
@@ -203,6 +204,7 @@ def _tensile(material, modulus, table):
     return material, table
 
 
+@exits_on_interrupt("vjax-fit-torque")
 def main(argv=None) -> int:
     """Console entry point; returns the exit code (also when called from Python)."""
     args = _parser().parse_args(argv)

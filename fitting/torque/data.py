@@ -77,10 +77,13 @@ def read_torque_csv(path) -> TorqueData:
     non-finite values, speed or load <= 0, scatter <= 0, or a curve with a repeated speed."""
     path = str(path)
     try:
-        with open(path, encoding="utf-8") as fh:
+        with open(path, encoding="utf-8-sig") as fh:    # -sig: a spreadsheet's byte-order mark
             lines = fh.read().splitlines()
     except OSError as e:
         raise TorqueFormatError(path, None, f"cannot read ({e.strerror})") from None
+    except UnicodeDecodeError:
+        raise TorqueFormatError(path, None, "not a UTF-8 text file (a CSV saved as UTF-16 or a binary "
+                                            "file? save it as CSV UTF-8)") from None
     body = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")]
     if not body:
         raise TorqueFormatError(path, None, "no header and no data (empty file or only comments)")
