@@ -99,3 +99,23 @@ def test_export_arguments_refused_before_any_work(tmp_path, capsys, args, words)
     err = capsys.readouterr().err
     assert code == 2 and words in err, err
     assert not (tmp_path / "out").exists() and not (tmp_path.parent / "escape_abaqus_degC.inp").exists()
+
+
+def test_a_film_past_laminar_is_flagged_in_points_and_report(tmp_path, capsys):
+    """The issue's journal at 1e6 rpm (constant viscosity): Re = rho omega R c / eta far above
+    Taylor's 41.3 sqrt(R/c); 1000 rpm is laminar. The Reynolds number is the textbook's."""
+    import csv
+    case = tmp_path / "fast.toml"
+    case.write_text('[case]\nscene = "long_journal"\nname = "fast"\n[geometry]\nbore_radius = "25 mm"\n'
+                    'radial_clearance = "50 um"\nlength = "50 mm"\n[lubricant]\nviscosity = "0.01 Pa s"\n'
+                    '[operating]\nspeed = ["1000 rpm", "1000000 rpm"]\nload = "2 kN"\n[grid]\nn = 64\n')
+    code, err = _bearing(capsys, case, "--out", tmp_path / "out", "--quiet")
+    rows = list(csv.DictReader(open(tmp_path / "out" / "fast" / "points.csv")))
+    slow, fast = rows
+    assert float(slow["reynolds_number"]) == pytest.approx(860 * 1000 * 2 * 3.141592653589793 / 60 * 0.025 * 5e-5 / 0.01)
+    assert slow["validity"] == "" and "Taylor" not in slow["validity"]
+    assert "laminar limit" in fast["validity"]
+    limit = 41.3 * (0.025 / 5e-5) ** 0.5
+    assert f"{limit:.3g}" in fast["validity"]
+    report = (tmp_path / "out" / "fast" / "report.md").read_text()
+    assert "outside the model's validity" in report and f"- point {fast['point']}:" in report

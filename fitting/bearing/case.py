@@ -69,6 +69,7 @@ class Case:
     m: int | None
     whirl_ratios: tuple
     overrides: tuple = ()
+    density: float | None = None   # the lubricant's (kg/m^3): the film's Reynolds number
 
     @property
     def journal(self):
@@ -178,14 +179,16 @@ def _lubricant(root: Table, scene: str):
     if not scene.endswith("journal"):
         if t is not None:
             raise root.error("lubricant", f"a {scene} is dry: remove the [lubricant] table")
-        return None, "none (dry contact)"
+        return None, "none (dry contact)", None
     from vjax import Lubricant
     law = t.choice("law", ("constant", "oil", "water"), "constant")
     if law == "constant":
         eta = t.quantity("viscosity", "viscosity")
-        lubricant, what = Lubricant.constant(eta), f"isoviscous, {eta:g} Pa s"
+        rho = t.quantity("density", "density", "860 kg/m3")
+        lubricant, what = Lubricant.constant(eta, rho=rho), f"isoviscous, {eta:g} Pa s, density {rho:g} kg/m3"
     elif law == "water":
         lubricant, what = Lubricant.water(), "water (Vogel's equation)"
+        rho = float(lubricant.rho)
     else:
         nu40 = t.quantity("nu40", "kinematic viscosity")
         nu100 = t.quantity("nu100", "kinematic viscosity")
@@ -196,7 +199,7 @@ def _lubricant(root: Table, scene: str):
         lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=rho)
         what = f"oil, Walther (ASTM D341) through nu40 = {nu40:g} cSt, nu100 = {nu100:g} cSt, density {rho:g} kg/m3"
     t.close()
-    return lubricant.viscosity, what     # Pa s at T (C)
+    return lubricant.viscosity, what, rho     # Pa s at T (C); kg/m^3
 
 
 def load_case(path, overrides=()) -> Case:
@@ -236,7 +239,7 @@ def load_case(path, overrides=()) -> Case:
     cavitation = case_t.choice("cavitation", ("reynolds", "jfo", "half_sommerfeld", "sommerfeld"), "reynolds")
     case_t.close()
     geometry = _geometry(root.table("geometry"), scene)
-    viscosity, lubricant = _lubricant(root, scene)
+    viscosity, lubricant, density = _lubricant(root, scene)
     housing = _body(root, "housing", scene, path.parent)
     shaft = _body(root, "shaft", scene, path.parent) if scene != "pin" else Body("rigid")
     if scene == "pin" and "shaft" in data:
@@ -304,5 +307,5 @@ def load_case(path, overrides=()) -> Case:
     root.close()
     return Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
                 np.asarray(speeds, float), np.asarray(loads, float), temperatures, turning, load_angle, memory,
-                cavitation, n, m, whirl, tuple(overrides))
+                cavitation, n, m, whirl, tuple(overrides), density)
 

@@ -223,6 +223,10 @@ def write_outputs(case, points, folder, seconds: float, version: str) -> list:
     if failed:
         rep += ["", "### Points that did not converge", ""]
         rep += [f"- point {p.index}: {p.row['reason']}" for p in failed]
+    outside = [p for p in points if p.row.get("validity")]
+    if outside:
+        rep += ["", "### Points outside the model's validity", ""]
+        rep += [f"- point {p.index}: {p.row['validity']}" for p in outside]
     if case.journal:
         rep += ["", "## Dynamic coefficients", "",
                 f"`coefficients.csv`: K (N/m) and C (N s/m) of every converged point at whirl ratios "
@@ -237,8 +241,9 @@ def write_outputs(case, points, folder, seconds: float, version: str) -> list:
     rep += ["", "## Figures", ""] + [f"![{n}]({n})\n\n{what}\n" for n, what in figures]
     rep += ["## Definitions", "",
             "- friction torque: on the stationary body, positive when it is dragged along (a torque arm on it); "
-            "friction coefficient: friction torque / (load x radius), the bore radius"
-            + (" (the inner raceway radius for a roller bearing)" if case.scene == "roller" else "") + ".",
+            + ("friction coefficient: the journal's friction force over the load (Raimondi and Boyd's f)."
+               if case.journal else "friction coefficient: friction torque / (load x radius), the bore radius"
+               + (" (the inner raceway radius for a roller bearing)" if case.scene == "roller" else "") + "."),
             "- viscoelastic share: the bodies' hysteresis power over the power put in (1 for a dry contact, "
             "whose friction is all hysteresis; 0 for a body that sees a steady load, e.g. a liner in a fixed "
             "housing under a turning shaft)."]

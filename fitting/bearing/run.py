@@ -48,6 +48,26 @@ class Point:
         return not self.reason
 
 
+# G. I. Taylor (1923): between concentric cylinders, the inner one turning, laminar Couette flow
+# gives way to toroidal vortices above Re = rho omega R c / eta = 41.3 sqrt(R / c) (as in
+# Hamrock's Fundamentals of Fluid Film Lubrication); with the outer one turning it stays laminar
+# until it turns turbulent, at about Re = 2000 (Taylor 1936)
+TAYLOR = 41.3
+TURBULENT_REYNOLDS = 2000.0
+
+
+def outside_the_model(case, reynolds: float) -> list:
+    """Why an operating point lies outside the model's laminar, inertia-free film (sentences;
+    empty when it does not)."""
+    R, c = case.geometry["R"], case.geometry["c"]
+    limit = TAYLOR * math.sqrt(R / c) if case.turning == "shaft" else TURBULENT_REYNOLDS
+    if reynolds <= limit:
+        return []
+    what = "Taylor vortices" if case.turning == "shaft" and reynolds < TURBULENT_REYNOLDS else "turbulence"
+    return [f"Reynolds number {reynolds:.3g} above the laminar limit {limit:.3g} ({what}): the laminar "
+            f"Reynolds equation underestimates the friction and misstates the load capacity"]
+
+
 def _body(vjax, b, T):
     if b.kind == "rigid":
         return None
@@ -115,9 +135,12 @@ def _row(case, p: Point, r, eta):
     names += ["max_pressure_Pa", f"friction_torque_{tu}", f"torque_housing_{tu}", f"torque_shaft_{tu}",
               "friction_coefficient", "power_W" if total else "power_W_per_m", "viscoelastic_share"]
     if c.journal:
-        names += ["side_leakage_m3_s", "supply_flow_m3_s", "inlet_flow_m3_s"]
+        names += ["side_leakage_m3_s", "supply_flow_m3_s", "inlet_flow_m3_s", "reynolds_number", "validity"]
     for k in names:
         row[k] = None
+    if c.journal:      # from the inputs alone: a failed point says it too
+        row["reynolds_number"] = c.density * p.speed * g["R"] * g["c"] / eta
+        row["validity"] = "; ".join(outside_the_model(c, row["reynolds_number"]))
     row.update(converged=r is not None and p.converged, iterations=None, residual=None, reason=p.reason)
     if r is None:
         return row
