@@ -400,24 +400,24 @@ def test_table_law_names_the_alternative(tmp_path, capsys):
     assert "refit with vjax-fit --law WLF" in capsys.readouterr().err
 
 
-def test_refusals_say_what_to_add_and_write_nothing(tmp_path, capsys):
+def test_refusals_say_what_to_add_and_write_nothing_of_their_own(tmp_path, capsys):
     path = _write(tmp_path, dict(WLF_MAT, nu=0.4))
     # no temperature scale: refused before anything is fitted or written, in the CLI and the API
     assert export_cli.main([path, "--format", "abaqus"]) == 2
     assert "add --temperature K or --temperature C" in capsys.readouterr().err
     with pytest.raises(ValueError, match="temperature 'K' or 'C'"):
         export.export(export.load(path), "abaqus", str(tmp_path), "mat")
-    # LS-DYNA without a density: nothing written, not even the Abaqus file rendered before it
+    # LS-DYNA without a density: no LS-DYNA file; the Abaqus card is written all the same
     assert export_cli.main([path, "--format", "abaqus,lsdyna", "--temperature", "K", "--full-spectrum"]) == 1
     assert "add --density" in capsys.readouterr().err
     arr = _write(tmp_path, dict(ARR_MAT, nu=0.4), "arr")
     assert export_cli.main([arr, "--format", "abaqus,lsdyna", "--temperature", "C", "--density", "1000",
                             "--full-spectrum"]) == 1
     assert "absolute temperatures: use --temperature K" in capsys.readouterr().err
-    assert export_cli.main([path, "--format", "abaqus", "--max-terms", "3", "--full-spectrum",
+    assert export_cli.main([path, "--format", "ansys", "--max-terms", "3", "--full-spectrum",
                             "--temperature", "K"]) == 1
     assert "drop --full-spectrum" in capsys.readouterr().err
-    assert sorted(os.listdir(tmp_path)) == ["arr.json", "mat.json"]
+    assert sorted(os.listdir(tmp_path)) == ["arr.json", "arr_abaqus_degC.inp", "mat.json", "mat_abaqus_K.inp"]
     assert export_cli.main([path, "--format", "abaqus", "--out-dir", str(tmp_path / "missing"),
                             "--temperature", "K"]) == 1
 
@@ -532,8 +532,8 @@ def _full_dev(d, terms, w):
 
 
 def test_lsdyna_refused_without_window_names_one(shipped, tmp_path, capsys):
-    """Six cards cannot hold the example's 27 decades: without --window no file is written, and
-    the message names the widest window six cards do hold. Checked here: the refit over the
+    """Six cards cannot hold the example's 27 decades: without --window no LS-DYNA file is written
+    (the Abaqus card is), and the message names the widest window six cards do hold. Checked here: the refit over the
     data's window (asked for explicitly) misses the DMA points by more than twice the full
     fit's error (computed here); over the named window the card is within twice the full
     fit's error on the DMA points inside it (computed here), and its header states its
@@ -544,7 +544,7 @@ def test_lsdyna_refused_without_window_names_one(shipped, tmp_path, capsys):
             "--out-dir", str(tmp_path)]
     assert export_cli.main(args) == 1
     err = capsys.readouterr().err
-    assert not list(tmp_path.iterdir())                       # nothing written, not even the Abaqus card
+    assert [p.name for p in tmp_path.iterdir()] == ["pyvisco_abaqus_degC.inp"]   # no LS-DYNA file
     lo, hi = re.search(r"the widest window 6 cards do hold is (1e-?\d+)\.\.(1e-?\d+) s at T_ref", err).groups()
     assert f"--window {lo},{hi}" in err
     full = (d["E0"] / 2.9, np.array(d["moduli"]) / 2.9, np.array(d["times"]))
@@ -830,3 +830,20 @@ def test_a_liquid_json_exports_and_vjax_refuses_it_clearly(tmp_path):
         io.material_from_dict(d, path)
     with pytest.raises(ValueError, match="E0 must be a finite number >= 0"):
         export.split(dict(WLF_MAT, E0=-1.0))
+
+
+def test_a_refused_code_does_not_block_the_others(tmp_path, capsys):
+    """LS-DYNA refused (no --density), Abaqus and ANSYS written and read back as the material;
+    the tool names the refused code and exits 1 (issue 52)."""
+    path = _write(tmp_path, WLF_MAT)
+    code = export_cli.main([path, "--format", "abaqus,lsdyna,ansys", "--nu", "0.42", "--full-spectrum",
+                            "--temperature", "K"])
+    cap = capsys.readouterr()
+    assert code == 1 and "lsdyna not written" in cap.err and "density" in cap.err, cap.err
+    assert "abaqus" not in cap.err and "ansys" not in cap.err
+    for fmt in ("abaqus", "ansys"):
+        _check(WLF_MAT, fmt, str(tmp_path), "mat", "SI", 0.42, "K")
+    assert not any("lsdyna" in p.name for p in tmp_path.iterdir())
+    with pytest.raises(export.ExportRefused) as refused:
+        export.export(export.load(path, nu=0.42), ["lsdyna"], str(tmp_path), "again", temperature="K")
+    assert list(refused.value.refused) == ["lsdyna"] and refused.value.written == []

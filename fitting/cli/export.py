@@ -118,12 +118,14 @@ def run(m, formats, out_dir, stem, args, max_terms=None) -> list:
     """Export ``m`` with the options of :func:`add_arguments`, printing the choices made."""
     from fitting.fem import export
     notes = []
-    written = export.export(m, formats, out_dir, stem, units=args.units, temperature=args.temperature,
-                            max_terms=max_terms, density=args.density,
-                            terms="full" if args.full_spectrum else "compact", window=parse_window(args.window),
-                            messages=notes, isothermal=args.isothermal)
-    for n in notes:
-        print(n)
+    try:
+        written = export.export(m, formats, out_dir, stem, units=args.units, temperature=args.temperature,
+                                max_terms=max_terms, density=args.density,
+                                terms="full" if args.full_spectrum else "compact", window=parse_window(args.window),
+                                messages=notes, isothermal=args.isothermal)
+    finally:
+        for n in notes:
+            print(n)
     return written
 
 
@@ -166,6 +168,12 @@ def main(argv=None) -> int:
     try:
         m = export.load(args.material, nu=args.nu, bulk_modulus=args.bulk_modulus, shift_law=args.shift_law)
         written = run(m, args.format, out_dir, stem, args, max_terms=args.max_terms)
+    except export.ExportRefused as e:      # the other codes are written
+        if e.written:
+            print("wrote " + ", ".join(e.written))
+        for code, why in e.refused.items():
+            print(f"vjax-export: error: {code} not written: {why}", file=sys.stderr)
+        return 1
     except (ValueError, OSError) as e:
         print(f"vjax-export: error: {e}", file=sys.stderr)
         return 1

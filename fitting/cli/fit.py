@@ -136,17 +136,20 @@ def main(argv=None) -> int:
         print(f"vjax-fit: error: {e}", file=sys.stderr)
         return 1
     print(rep.table())
-    export_error = None
+    export_errors = []
     if args.export:
+        from fitting.fem.export import ExportRefused
         try:
             written += _export(args, out)
+        except ExportRefused as e:              # the fit and the other codes are written
+            written += e.written
+            export_errors = [f"{code} not written: {why}" for code, why in e.refused.items()]
         except (ValueError, OSError) as e:     # the fit is written: say so, then why the export is not
-            export_error = e
+            export_errors = [f"no FEM export: {e}"]
     print("wrote " + ", ".join(written))
-    if export_error:
-        print(f"vjax-fit: error: no FEM export: {export_error}", file=sys.stderr)
-        return 1
-    return 0
+    for why in export_errors:
+        print(f"vjax-fit: error: {why}", file=sys.stderr)
+    return 1 if export_errors else 0
 
 
 if __name__ == "__main__":

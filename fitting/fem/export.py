@@ -97,7 +97,7 @@ from fitting.shared import evaluate
 from fitting.shared.evaluate import tensile_over_shear
 from fitting.shared import files
 
-__all__ = ["FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
+__all__ = ["ExportRefused", "FEMMaterial", "Card", "FORMATS", "UNITS", "CARD_LIMIT", "load", "split", "prepare", "export",
            "render", "parse_formats", "lsdyna_shift", "abaqus_name", "evaluate_card", "file_name", "data_points",
            "deck_name", "isothermal_card", "verification_plan", "widest_window", "STRAIN"]
 
@@ -961,11 +961,22 @@ def deck_name(stem: str, fmt: str, temperature: str) -> str:
     return f"{stem}_{fmt}_{TEMPERATURES[temperature]}_verify{EXTENSION[fmt]}"
 
 
+class ExportRefused(ValueError):
+    """Some codes of an export were refused: ``refused`` maps each to its reason; ``written``
+    lists the files of the others (written whole)."""
+
+    def __init__(self, refused: dict, written: list):
+        self.refused, self.written = refused, written
+        super().__init__("; ".join(f"{code}: {why}" for code, why in refused.items()))
+
+
 def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None, max_terms=None, *, density=None,
            terms="compact", window=None, messages=None, isothermal=None) -> list:
     """Write the files of ``formats`` (names of :data:`FORMATS`) as
-    ``<out_dir>/<stem>_<code>_<K|degC>...`` atomically; every file is rendered before the
-    first is written, so a refused format leaves nothing behind. Returns the paths.
+    ``<out_dir>/<stem>_<code>_<K|degC>...`` atomically; returns the paths. A code's files are
+    all rendered before any is written, so a refused code leaves nothing of its own behind; the
+    other codes are written all the same, and :class:`ExportRefused` then names each refused
+    code with its reason (``written``: the files of the others).
 
     ``temperature``: 'K' or 'C', required (the scale of every temperature in the files).
     ``density``: kg/m^3 (LS-DYNA refuses without it). ``terms``, ``max_terms``, ``window``
@@ -985,23 +996,31 @@ def export(m: FEMMaterial, formats, out_dir, stem, units="SI", temperature=None,
         if not math.isfinite(T_iso) or T_iso <= -KELVIN:
             raise ValueError(f"--isothermal must be a temperature above absolute zero, got {isothermal!r} "
                              f"({temperature})")
-    texts, base = [], None
+    texts, base, refused = [], None, {}
     for fmt in fmts:
-        if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
-            series = prepare(m, "full", None, window, CARD_LIMIT[fmt], messages)
-        else:
-            base = base or prepare(m, terms, max_terms, window, messages=messages)
-            series = base
-        if T_iso is not None:
-            series = isothermal_card(series, T_iso)
-        text = render(series, fmt, u.name, temperature, name=stem.upper().replace(" ", "_") or "VJAX",
-                      density=density)
-        parts = text if isinstance(text, tuple) else (text,)
-        names = file_name(stem, fmt, temperature, isothermal)
-        texts += [(os.path.join(out_dir, n), t) for n, t in zip(names, parts)]
-        if fmt in DECKS and T_iso is None:
-            texts.append((os.path.join(out_dir, deck_name(stem, fmt, temperature)), DECKS[fmt](series, u, names[0])))
-    return [os.fspath(p) for p in files.write_all_atomic(texts)]
+        try:
+            if fmt in CARD_LIMIT:       # the full series if it fits, else its refit to the limit
+                series = prepare(m, "full", None, window, CARD_LIMIT[fmt], messages)
+            else:
+                base = base or prepare(m, terms, max_terms, window, messages=messages)
+                series = base
+            if T_iso is not None:
+                series = isothermal_card(series, T_iso)
+            text = render(series, fmt, u.name, temperature, name=stem.upper().replace(" ", "_") or "VJAX",
+                          density=density)
+            parts = text if isinstance(text, tuple) else (text,)
+            names = file_name(stem, fmt, temperature, isothermal)
+            own = [(os.path.join(out_dir, n), t) for n, t in zip(names, parts)]
+            if fmt in DECKS and T_iso is None:
+                own.append((os.path.join(out_dir, deck_name(stem, fmt, temperature)), DECKS[fmt](series, u, names[0])))
+        except ValueError as e:
+            refused[fmt] = str(e)
+            continue
+        texts += own
+    written = [os.fspath(p) for p in files.write_all_atomic(texts)] if texts else []
+    if refused:
+        raise ExportRefused(refused, written)
+    return written
 
 
 # ---- reading a card back: each code's documented formula -----------------------------------
