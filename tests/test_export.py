@@ -847,3 +847,24 @@ def test_a_refused_code_does_not_block_the_others(tmp_path, capsys):
     with pytest.raises(export.ExportRefused) as refused:
         export.export(export.load(path, nu=0.42), ["lsdyna"], str(tmp_path), "again", temperature="K")
     assert list(refused.value.refused) == ["lsdyna"] and refused.value.written == []
+
+
+def test_the_card_says_which_poisson_ratio_it_holds(tmp_path):
+    """The instantaneous ratio in *ELASTIC is (3K - 2G_g)/(2(3K + G_g)) of the card's own K and
+    G_g (computed here from the written numbers): the given nu for the full series; for a series
+    with another G_g (a refit) the header says it is not the given one, and why (issue 52)."""
+    from fitting.calibration import compact
+    m = export.load(_write(tmp_path, WLF_MAT), nu=0.3)
+
+    def elastic(card):
+        lines = card.splitlines()
+        E, nu = (float(v) for v in lines[lines.index("*ELASTIC, MODULI=INSTANTANEOUS") + 1].split(","))
+        return E, nu, next(line for line in lines if "Poisson's ratio" in line)
+
+    E, nu, said = elastic(export.render(m, "abaqus", "SI", "K", name="M"))
+    assert nu == pytest.approx(0.3, abs=1e-9) and "the nu = 0.3 the material was split with" in said
+    refit = m.with_series(compact.Series(m.G_inf, m.G[1:], m.tau[1:]), "a refit without the fastest term")
+    E, nu, said = elastic(export.render(refit, "abaqus", "SI", "K", name="M"))
+    G_g = refit.G_inf + refit.G.sum()
+    assert nu == pytest.approx((3 * m.K - 2 * G_g) / (2 * (3 * m.K + G_g)), rel=1e-6) and nu > 0.3 + 1e-3
+    assert f"nu_g = (3K - 2G_g)/(2(3K + G_g)) = {nu:.4f}, not the nu = 0.3" in said

@@ -144,6 +144,7 @@ class FEMMaterial:
     note: str = ""
     liquid: str = ""
     iso_T: float | None = None
+    nu: float | None = None         # the ratio E was split with into G and K (None: K was given)
 
     @property
     def G_g(self) -> float:
@@ -303,7 +304,8 @@ def split(d: dict, nu=None, bulk_modulus=None, shift_law=None, where="material")
     return FEMMaterial(float(G_inf), G, tau, float(K), law, shift, T_ref, source=where, files=files,
                        errors={k: float(v) for k, v in errors.items() if isinstance(v, (int, float))},
                        window=window, to_data=to_data, domain=str(fit.get("domain", "frequency")),
-                       note=f"{len(G)} terms: the full fit", liquid=liquid)
+                       note=f"{len(G)} terms: the full fit", liquid=liquid,
+                       nu=None if bulk_modulus is not None else nu)
 
 
 def load(path, nu=None, bulk_modulus=None, shift_law=None) -> FEMMaterial:
@@ -631,8 +633,21 @@ class _Units:
         lines += [
             f"shear G(t) = G_inf + sum G_i exp(-t/tau_i): G_inf = {_num(self.p(m.G_inf))}, "
             f"G_g = {_num(self.p(m.G_g))}; elastic bulk K = {_num(self.p(m.K))}",
-            fields]
+            _poisson(m), fields]
         return "\n".join(comment + " " + s for s in lines)
+
+
+def _poisson(m: FEMMaterial) -> str:
+    """The header line that says which Poisson's ratio the card's elastic fields hold, and why
+    it is not the one the material was split with when it differs."""
+    line = f"Poisson's ratio in the elastic fields: instantaneous nu_g = (3K - 2G_g)/(2(3K + G_g)) = {m.nu_g:.4f}"
+    if m.nu is None:
+        return line + " (K as given)"
+    if abs(m.nu_g - m.nu) <= 5e-4:
+        return line + f", the nu = {m.nu:g} the material was split with"
+    return (line + f", not the nu = {m.nu:g} the material was split with: K = E_g / (3 (1 - 2 nu)) holds the full "
+            "fit's glassy modulus and G_g is this series' (a refit over a window, or G_inf = 0 for a liquid, "
+            "changes it); the card's shear and bulk responses are the ones stated here")
 
 
 def abaqus_name(name: str) -> str:

@@ -44,7 +44,7 @@ def _residual_fn(params: Params, model, data: TorqueData, rel_scatter, dma_table
     meas = jnp.asarray(data.torque)
     sig = jnp.asarray(data.sigma(rel_scatter))
     if dma_table is not None and w_dma > 0:
-        from fitting.calibration.pipeline.prony import log_residual
+        from fitting.calibration.prony import log_residual
     else:
         dma_table = None
 
