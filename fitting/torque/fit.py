@@ -181,7 +181,9 @@ def fit_torque(data: TorqueData, material: Material, shift: WLF, model, *, dma_t
       extras: scene parameters fitted with the material, a dict of start values (> 0) by name
         (:data:`EXTRAS`: ``mu_b`` and ``sigma`` (m) of a journal model with a roughness, ``hA``
         of a model with a heat transfer); None or {}: the material alone.
-      steps, lr, lr_end: Adam iterations and a cosine-decayed learning rate (log units).
+      steps: Adam iterations.
+      lr: Adam's learning rate at the start (log units), cosine-decayed to
+      lr_end: at the end.
       gtol: stop when the gradient norm falls below it.
       polish: at most this many Levenberg-Marquardt iterations after Adam (0: none).
       progress: print (iteration, loss, gradient norm) every ``every`` iterations to
