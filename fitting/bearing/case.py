@@ -71,6 +71,11 @@ class Case:
     overrides: tuple = ()
     density: float | None = None   # the lubricant's (kg/m^3): the film's Reynolds number
 
+    def eta(self, T) -> float:
+        """The lubricant's viscosity (Pa s) at ``T`` (C). T is None only where the case gives no
+        temperature, which only a constant viscosity allows: any T gives it."""
+        return float(self.viscosity(0.0 if T is None else T))
+
     @property
     def journal(self):
         return self.scene.endswith("journal")
@@ -282,7 +287,7 @@ def load_case(path, overrides=()) -> Case:
                 raise root.error("operating.temperature", f"{T:g} C is outside the {side} material's shift law{why}")
     if viscosity is not None:
         for T in temperatures:
-            eta = float(viscosity(T if T is not None else 20.0))
+            eta = float(viscosity(0.0 if T is None else T))     # None: a constant viscosity (Case.eta)
             if not (math.isfinite(eta) and eta > 0):
                 raise root.error("operating.temperature", f"the lubricant's viscosity at {T} C is {eta!r}")
 

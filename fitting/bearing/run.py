@@ -88,7 +88,7 @@ class _Scene:
 
     def _journal_args(self, load):
         c, g = self.case, self.case.geometry
-        eta = float(c.viscosity(self.T if self.T is not None else 20.0))
+        eta = c.eta(self.T)
         finite = c.scene == "finite_journal"
         kw = dict(housing=self.housing, shaft=self.shaft, load_angle=c.load_angle, cavitation=c.cavitation)
         if finite:
@@ -209,7 +209,7 @@ def run_case(case, progress=True, stream=None) -> list:
             scenes[T] = _Scene(case, T)       # the bodies at T (each material under its own shift law)
         scene = scenes[T]
         p = Point(i, T, float(W), float(w), {})
-        eta = float(case.viscosity(T if T is not None else 20.0)) if case.journal else None
+        eta = case.eta(T) if case.journal else None
         if (T, W) != prev_key:
             prev_key, prev = (T, W), None
         result, reasons = None, []
