@@ -15,7 +15,8 @@ built under a temporary name and renamed into place at the end (an earlier run's
 replaced only then). Points run as a warm-started sweep with a progress bar on stderr; a point
 that fails is reported in its row with the solver's reason and the others go on.
 
-Exit status: 0 every point converged, 1 some did not (results written), 2 bad input (nothing written).
+Exit status: 0 every point converged, 1 some did not (results written), 2 bad input (nothing
+written), 130 interrupted (Ctrl-C).
 
 Example::
 
@@ -32,7 +33,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from fitting.shared import jax_cache
+from fitting.shared import files, jax_cache
 from fitting.cli.interrupt import exits_on_interrupt
 
 
@@ -114,9 +115,9 @@ def main(argv=None) -> int:
     _remove_stale(out, case.name)
     tmp = Path(tempfile.mkdtemp(prefix=f".{case.name}.{os.getpid()}.", dir=out))
     try:
-        files = bearing_output.write_outputs(case, points, tmp, time.perf_counter() - t0,
+        written = bearing_output.write_outputs(case, points, tmp, time.perf_counter() - t0,
                                              getattr(vjax, "__version__", "0.1.0"))
-        os.chmod(tmp, 0o777 & ~_umask())         # mkdtemp makes it 0700
+        os.chmod(tmp, 0o777 & ~files.umask())    # mkdtemp makes it 0700
         _replace_folder(tmp, target)
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -124,7 +125,7 @@ def main(argv=None) -> int:
     failed = sum(not p.row["converged"] for p in points)
     if not args.quiet:
         print(bearing_output.summary_table(case, points))
-    print(f"vjax-bearing: wrote {target}/ ({', '.join(files)}); {len(points) - failed} of {len(points)} points "
+    print(f"vjax-bearing: wrote {target}/ ({', '.join(written)}); {len(points) - failed} of {len(points)} points "
           f"converged", file=sys.stderr)
     return 1 if failed else 0
 
@@ -157,12 +158,6 @@ def _running(pid: int) -> bool:
     except OSError:          # another user's process: running
         return True
     return True
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 if __name__ == "__main__":

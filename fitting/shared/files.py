@@ -13,10 +13,11 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["write_atomic", "write_all_atomic", "write_temporary", "save_figure"]
+__all__ = ["umask", "write_atomic", "write_all_atomic", "write_temporary", "save_figure"]
 
 
-def _umask() -> int:
+def umask() -> int:
+    """This process's umask (read by setting it and setting it back)."""
     mask = os.umask(0)
     os.umask(mask)
     return mask
@@ -33,7 +34,7 @@ def write_temporary(path, data: bytes | str) -> Path:
             fh.write(data.encode("utf-8") if isinstance(data, str) else data)
             fh.flush()
             os.fsync(fh.fileno())
-        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes it 0600
+        os.chmod(tmp, 0o666 & ~umask())     # mkstemp makes it 0600
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
