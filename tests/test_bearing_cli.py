@@ -300,3 +300,50 @@ load = "{W} N"
     housing = float(row["friction_torque_Nm"]) / (W * R) * R / c
     arm = float(row["eccentricity"]) * math.sin(math.radians(float(row["attitude_deg"])))
     assert housing == pytest.approx(float(row["friction_coefficient"]) * R / c - arm, rel=0.01)
+
+
+assert JOURNAL.endswith('temperature = "50 C"\n')
+TWO_TEMPERATURES = (JOURNAL.removesuffix('temperature = "50 C"\n') + 'temperature = "40 C"\n') \
+    .replace('material = "liner.json"\n', 'material = "liner.json"\ntemperature = "60 C"\n\n'
+             '[shaft]\nbody = "sleeve"\nthickness = "2 mm"\nmaterial = "liner.json"\n') \
+    .replace('nu100 = "5.4 cSt"\n', 'nu100 = "5.4 cSt"\ntemperature = "50 C"\n') + '\n[grid]\nn = 16\nm = 4\n'
+
+
+def test_two_bodies_at_two_temperatures_and_the_oil_at_a_third(tmp_path, capsys):
+    """The housing's liner at its own 60 C, the shaft's sleeve at the operating 40 C, the oil at
+    its own 50 C: each body's relaxation times are its material's at its temperature
+    (Material.at_temperature), the viscosity the oil's at 50 C; the case runs (issue 51)."""
+    import numpy as np
+    import vjax
+    from fitting.bearing import run
+    from fitting.bearing.case import load_case
+    from fitting.calibration.io import load_material
+    shutil.copy(EXAMPLES / "polymer_liner.json", tmp_path / "liner.json")
+    path = _write(tmp_path, TWO_TEMPERATURES)
+    case = load_case(path)
+    assert case.temperatures == (40.0,) and case.housing.temperature == 60.0 and case.oil_temperature == 50.0
+    material, law, _ = load_material(tmp_path / "liner.json")
+    scene = run._Scene(case, 40.0)
+    for body, T in ((scene.housing, 60.0), (scene.shaft, 40.0)):
+        expected = material.with_shift(law).at_temperature(T).times
+        np.testing.assert_allclose(np.asarray(body.material.times), np.asarray(expected), rtol=1e-12)
+    oil = vjax.Lubricant.walther(32.0, 5.4, 40.0, 100.0, rho=860.0)
+    assert case.eta(40.0) == pytest.approx(float(oil.viscosity(50.0)), rel=1e-12)
+    code, _, err = _run(capsys, path, "--out", tmp_path / "out", "--quiet")
+    assert code == 0, err
+
+
+@pytest.mark.parametrize("edit, key", [
+    (('[lubricant]\nlaw = "oil"', '[lubricant]\nlaw = "constant"\nviscosity = "0.01 Pa s"'), "lubricant.temperature"),
+    (('material = "liner.json"\ntemperature = "60 C"',
+      'material = { model = "sls", E0 = "1 MPa", Einf = "10 MPa", tau = "10 ms", nu = 0.45 }\ntemperature = "60 C"'),
+     "housing.temperature"),
+])
+def test_a_temperature_that_moves_nothing_is_refused(tmp_path, capsys, edit, key):
+    shutil.copy(EXAMPLES / "polymer_liner.json", tmp_path / "liner.json")
+    text = TWO_TEMPERATURES.replace(edit[0], edit[1])
+    if key == "lubricant.temperature":
+        text = text.replace('nu40 = "32 cSt"\nnu100 = "5.4 cSt"\n', "")
+    assert text != TWO_TEMPERATURES
+    code, _, err = _run(capsys, _write(tmp_path, text), "--out", tmp_path / "out")
+    assert code == 2 and f"{key}:" in err and "moves nothing" in err, err

@@ -32,7 +32,9 @@ _BODY_KINDS = {"housing": ("rigid", "hole", "liner", "half_plane"), "shaft": ("r
 class Body:
     """A bearing body: ``kind`` (rigid, hole, liner, half_plane, disc, sleeve), its
     ``material`` (vjax.Material or None), ``shift`` law (or None), ``thickness`` (m; liner and
-    sleeve) and ``ref_length`` (m; hole, disc, half-plane), ``source`` (where the material came from)."""
+    sleeve) and ``ref_length`` (m; hole, disc, half-plane), ``source`` (where the material came
+    from), ``temperature`` (C: the body's own, whatever the operating temperature; None: the
+    operating temperature's)."""
 
     kind: str
     material: object = None
@@ -40,6 +42,7 @@ class Body:
     thickness: float | None = None
     ref_length: float = 1.0
     source: str = ""
+    temperature: float | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -70,10 +73,13 @@ class Case:
     whirl_ratios: tuple
     overrides: tuple = ()
     density: float | None = None   # the lubricant's (kg/m^3): the film's Reynolds number
+    oil_temperature: float | None = None   # C: the oil's own, whatever the operating temperature
 
     def eta(self, T) -> float:
-        """The lubricant's viscosity (Pa s) at ``T`` (C). T is None only where the case gives no
-        temperature, which only a constant viscosity allows: any T gives it."""
+        """The lubricant's viscosity (Pa s) at the operating temperature ``T`` (C): at the oil's
+        own temperature where the case gives one. None only where no temperature is given, which
+        only a constant viscosity allows: any T gives it."""
+        T = self.oil_temperature if self.oil_temperature is not None else T
         return float(self.viscosity(0.0 if T is None else T))
 
     @property
@@ -152,8 +158,12 @@ def _body(root: Table, side: str, scene: str, base: Path) -> Body:
     mat, shift, source = _material(t, base)
     thickness = t.quantity("thickness", "length") if kind in ("liner", "sleeve") else None
     ref = t.quantity("ref_length", "length", "1 m") if kind in ("hole", "disc", "half_plane") else 1.0
+    temperature = t.quantity("temperature", "temperature", None, positive=False)
+    if temperature is not None and shift is None:
+        raise t.error("temperature", "moves nothing: the material has no shift law (give it one, or remove "
+                                     "the body's temperature)")
     t.close()
-    return Body(kind, mat, shift, thickness, ref, source)
+    return Body(kind, mat, shift, thickness, ref, source, temperature)
 
 
 def _geometry(t: Table, scene: str) -> dict:
@@ -184,7 +194,7 @@ def _lubricant(root: Table, scene: str):
     if not scene.endswith("journal"):
         if t is not None:
             raise root.error("lubricant", f"a {scene} is dry: remove the [lubricant] table")
-        return None, "none (dry contact)", None
+        return None, "none (dry contact)", None, None
     from vjax import Lubricant
     law = t.choice("law", ("constant", "oil", "water"), "constant")
     if law == "constant":
@@ -203,8 +213,12 @@ def _lubricant(root: Table, scene: str):
                                    f"nu100={nu100:g} cSt")
         lubricant = Lubricant.walther(nu40, nu100, 40.0, 100.0, rho=rho)
         what = f"oil, Walther (ASTM D341) through nu40 = {nu40:g} cSt, nu100 = {nu100:g} cSt, density {rho:g} kg/m3"
+    oil_T = t.quantity("temperature", "temperature", None, positive=False)
+    if oil_T is not None and law == "constant":
+        raise t.error("temperature", "moves nothing: a constant viscosity has no temperature (give law = \"oil\" "
+                                     "or \"water\", or remove it)")
     t.close()
-    return lubricant.viscosity, what, rho     # Pa s at T (C); kg/m^3
+    return lubricant.viscosity, what, rho, oil_T     # Pa s at T (C); kg/m^3; C
 
 
 def load_case(path, overrides=()) -> Case:
@@ -244,7 +258,7 @@ def load_case(path, overrides=()) -> Case:
     cavitation = case_t.choice("cavitation", ("reynolds", "jfo", "half_sommerfeld", "sommerfeld"), "reynolds")
     case_t.close()
     geometry = _geometry(root.table("geometry"), scene)
-    viscosity, lubricant, density = _lubricant(root, scene)
+    viscosity, lubricant, density, oil_temperature = _lubricant(root, scene)
     housing = _body(root, "housing", scene, path.parent)
     shaft = _body(root, "shaft", scene, path.parent) if scene != "pin" else Body("rigid")
     if scene == "pin" and "shaft" in data:
@@ -272,24 +286,27 @@ def load_case(path, overrides=()) -> Case:
     turning = op.choice("turning", ("shaft", "housing"), "shaft")
     load_angle = op.quantity("load_angle", "angle", "-90 deg", positive=False)
     op.close()
-    needs_T = [b for b in (housing, shaft) if b.shift is not None]
-    if temperatures == (None,) and (needs_T or lubricant.startswith(("oil", "water"))):
+    needs_T = [b for b in (housing, shaft) if b.shift is not None and b.temperature is None]
+    if temperatures == (None,) and (needs_T or (lubricant.startswith(("oil", "water")) and oil_temperature is None)):
         raise root.error("operating.temperature", "required: the lubricant's viscosity law or a material's shift "
-                         "law needs it (e.g. temperature = \"40 C\")")
+                         "law needs it (e.g. temperature = \"40 C\"; or give that body or the lubricant its own)")
     for side, b in (("housing", housing), ("shaft", shaft)):
-        for T in temperatures if b.shift is not None else ():
+        own = (b.temperature,) if b.temperature is not None else temperatures
+        for T in own if b.shift is not None else ():
             try:                                 # a shift law's own range (a fitted table's)
                 times = np.asarray(b.material.with_shift(b.shift).at_temperature(T).times)
                 why = "" if np.all(np.isfinite(times) & (times > 0)) else ": relaxation times not finite"
             except ValueError as e:
                 why = f": {e}"
             if why:
-                raise root.error("operating.temperature", f"{T:g} C is outside the {side} material's shift law{why}")
+                key = f"{side}.temperature" if b.temperature is not None else "operating.temperature"
+                raise root.error(key, f"{T:g} C is outside the {side} material's shift law{why}")
     if viscosity is not None:
-        for T in temperatures:
+        for T in (oil_temperature,) if oil_temperature is not None else temperatures:
             eta = float(viscosity(0.0 if T is None else T))     # None: a constant viscosity (Case.eta)
             if not (math.isfinite(eta) and eta > 0):
-                raise root.error("operating.temperature", f"the lubricant's viscosity at {T} C is {eta!r}")
+                key = "lubricant.temperature" if oil_temperature is not None else "operating.temperature"
+                raise root.error(key, f"the lubricant's viscosity at {T} C is {eta!r}")
 
     g = root.table("grid", None) or Table({}, "grid", path)
     n = g.number("n", _DEFAULT_N[scene], lo=8, integer=True)
@@ -312,5 +329,5 @@ def load_case(path, overrides=()) -> Case:
     root.close()
     return Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
                 np.asarray(speeds, float), np.asarray(loads, float), temperatures, turning, load_angle, memory,
-                cavitation, n, m, whirl, tuple(overrides), density)
+                cavitation, n, m, whirl, tuple(overrides), density, oil_temperature)
 

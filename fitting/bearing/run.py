@@ -71,6 +71,7 @@ def outside_the_model(case, reynolds: float) -> list:
 def _body(vjax, b, T):
     if b.kind == "rigid":
         return None
+    T = b.temperature if b.temperature is not None else T      # the body's own, where it has one
     mat = b.material if b.shift is None or T is None else b.material.with_shift(b.shift).at_temperature(T)
     if b.kind in ("liner", "sleeve"):
         return getattr(vjax, b.kind)(mat, b.thickness)
