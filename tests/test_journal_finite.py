@@ -538,3 +538,14 @@ def test_nested_start_and_the_rigid_estimate_reach_the_same_root():
     np.testing.assert_allclose(nested.pressure, direct.pressure, atol=1e-8 * float(np.max(direct.pressure)))
     with pytest.raises(ValueError, match="nested"):
         FiniteJournalOptions(nested="yes")
+
+
+@pytest.mark.parametrize("housing", [None, "liner"])
+def test_under_jfo_the_groove_supplies_what_leaves_at_the_ends(housing):
+    """Mass conservation (issue 52): in a steady fed bearing under JFO the groove's net outflow
+    is the side leakage, to the solver's tolerance, rigid or with a deformable liner."""
+    body = None if housing is None else vjax.liner(vjax.Material.sls(1e9, 3e9, 1e-3, 0.4), 2e-3)
+    s = vjax.journal_bearing(0.025, 5e-5, 0.03, 5000.0, length=0.05, omega_shaft=300.0, cavitation="jfo",
+                             housing=body, options=vjax.FiniteJournalOptions(n=32, m=8))
+    assert bool(s.converged) and float(s.side_leakage) > 0
+    assert float(s.supply_flow) == pytest.approx(float(s.side_leakage), rel=1e-6)

@@ -161,11 +161,14 @@ def _row(case, p: Point, r, eta):
         row.update(eccentricity=f(r.eccentricity), attitude_deg=math.degrees(f(r.attitude_angle)),
                    min_film_m=f(r.min_film), min_film_over_c=f(r.min_film) / g["c"],
                    viscoelastic_share=hyst / power + 0.0 if power else None)   # + 0.0: no -0.0
+        # the groove's net outflow is the flow the bearing takes only where the cells conserve
+        # mass (JFO); Reynolds' and Sommerfeld's conditions lose or make some in the cavity
+        supply = f(r.supply_flow) * per if c.cavitation == "jfo" else None
         if c.scene == "finite_journal":
             row.update(max_pressure_Pa=f(r.max_pressure), side_leakage_m3_s=f(r.side_leakage),
-                       supply_flow_m3_s=f(r.supply_flow), inlet_flow_m3_s=f(r.inlet_flow))
+                       supply_flow_m3_s=supply, inlet_flow_m3_s=f(r.inlet_flow))
         else:
-            row.update(max_pressure_Pa=float(np.max(np.asarray(r.pressure))), supply_flow_m3_s=f(r.supply_flow) * per)
+            row.update(max_pressure_Pa=float(np.max(np.asarray(r.pressure))), supply_flow_m3_s=supply)
     elif c.scene == "pin":
         row.update(pin_offset_m=float(np.linalg.norm(np.asarray(r.pin_offset))),
                    contact_angle_deg=math.degrees(f(r.contact_angle)),
