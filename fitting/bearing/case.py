@@ -301,12 +301,6 @@ def load_case(path, overrides=()) -> Case:
             if why:
                 key = f"{side}.temperature" if b.temperature is not None else "operating.temperature"
                 raise root.error(key, f"{T:g} C is outside the {side} material's shift law{why}")
-    if viscosity is not None:
-        for T in (oil_temperature,) if oil_temperature is not None else temperatures:
-            eta = float(viscosity(0.0 if T is None else T))     # None: a constant viscosity (Case.eta)
-            if not (math.isfinite(eta) and eta > 0):
-                key = "lubricant.temperature" if oil_temperature is not None else "operating.temperature"
-                raise root.error(key, f"the lubricant's viscosity at {T} C is {eta!r}")
 
     g = root.table("grid", None) or Table({}, "grid", path)
     n = g.number("n", _DEFAULT_N[scene], lo=8, integer=True)
@@ -327,7 +321,13 @@ def load_case(path, overrides=()) -> Case:
         raise root.error("geometry.length", "required for a long journal bearing: coefficients.csv holds the "
                          "bearing's totals (N/m, N s/m), the long bearing's per-length values times it")
     root.close()
-    return Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
+    case = Case(os.fspath(path), text, name, title, scene, geometry, housing, shaft, viscosity, lubricant,
                 np.asarray(speeds, float), np.asarray(loads, float), temperatures, turning, load_angle, memory,
                 cavitation, n, m, whirl, tuple(overrides), density, oil_temperature)
+    for T in temperatures if case.journal else ():
+        eta = case.eta(T)
+        if not (math.isfinite(eta) and eta > 0):
+            key = "lubricant.temperature" if oil_temperature is not None else "operating.temperature"
+            raise root.error(key, f"the lubricant's viscosity at {T if oil_temperature is None else oil_temperature} C is {eta!r}")
+    return case
 

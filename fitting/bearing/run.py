@@ -12,7 +12,8 @@ body, positive when it is dragged along (what a torque arm on it measures); the 
 coefficient* of a journal bearing is the library's, the journal's friction force over the load
 (Raimondi and Boyd's f; the housing's torque differs from the journal's by the load times the
 eccentricity's moment arm), and of a dry contact the friction torque over load x radius (bore
-radius; a roller bearing's inner raceway, the catalogues' mu = 2 M / (F d)); the *viscoelastic share* is the fraction of the
+radius; a roller bearing's inner raceway, the catalogues' mu = 2 M / (F d)); the *viscoelastic
+share* is the fraction of the
 power put in that the bodies' hysteresis takes (the rest heats the film; 1 for the dry
 contacts, where all friction is hysteresis).
 """
@@ -56,16 +57,16 @@ TAYLOR = 41.3
 TURBULENT_REYNOLDS = 2000.0
 
 
-def outside_the_model(case, reynolds: float) -> list:
-    """Why an operating point lies outside the model's laminar, inertia-free film (sentences;
-    empty when it does not)."""
+def outside_the_model(case, reynolds: float) -> str:
+    """Why an operating point lies outside the model's laminar, inertia-free film ('' when it
+    does not)."""
     R, c = case.geometry["R"], case.geometry["c"]
     limit = TAYLOR * math.sqrt(R / c) if case.turning == "shaft" else TURBULENT_REYNOLDS
     if reynolds <= limit:
-        return []
+        return ""
     what = "Taylor vortices" if case.turning == "shaft" and reynolds < TURBULENT_REYNOLDS else "turbulence"
-    return [f"Reynolds number {reynolds:.3g} above the laminar limit {limit:.3g} ({what}): the laminar "
-            f"Reynolds equation underestimates the friction and misstates the load capacity"]
+    return (f"Reynolds number {reynolds:.3g} above the laminar limit {limit:.3g} ({what}): the laminar "
+            f"Reynolds equation underestimates the friction and misstates the load capacity")
 
 
 def _body(vjax, b, T):
@@ -141,7 +142,7 @@ def _row(case, p: Point, r, eta):
         row[k] = None
     if c.journal:      # from the inputs alone: a failed point says it too
         row["reynolds_number"] = c.density * p.speed * g["R"] * g["c"] / eta
-        row["validity"] = "; ".join(outside_the_model(c, row["reynolds_number"]))
+        row["validity"] = outside_the_model(c, row["reynolds_number"])
     row.update(converged=r is not None and p.converged, iterations=None, residual=None, reason=p.reason)
     if r is None:
         return row
